@@ -1,0 +1,296 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/DenseSolver.h"
+
+#include "volrad/DirectLight.h"
+#include "volrad/EnergyBalance.h"
+#include "volrad/ExchangeAreas.h"
+#include "volrad/Sampling.h"
+
+#include <Eigen/Dense>
+#include <Eigen/IterativeLinearSolvers>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <memory>
+#include <sstream>
+
+namespace volrad {
+
+namespace {
+
+struct ChannelSystem
+{
+  Eigen::VectorXd e, c, D; // x = e + c .* (S x + D)
+};
+
+ChannelSystem buildSystem(const Scene& scene, int ch, const ExchangeElements& el, const DirectLighting& dl)
+{
+  const Grid& g = scene.grid;
+  const Index n = el.size();
+  const double V = g.voxelVolume();
+  ChannelSystem sys{ Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n) };
+  for (Index v = 0; v < g.voxelCount(); ++v)
+  {
+    const Index i = el.full[v];
+    if (i < 0)
+    {
+      continue;
+    }
+    const double kt = scene.kappaTAt(v, ch), ka = scene.kappaAAt(v, ch);
+    sys.e[i] = ka * scene.emissionIAt(v, ch) / kt;
+    sys.c[i] = scene.sigmaIAt(v, ch) / (4.0 * kt * kt * V);
+    sys.D[i] = kt * dl.track[v];
+    const Index f = el.front[v];
+    if (f >= 0)
+    {
+      sys.e[f] = ka * scene.emissionDAt(v, ch) / kt;
+      sys.c[f] = scene.sigmaDAt(v, ch) / (2.0 * kt * kt * V);
+      sys.D[f] = kt * dl.trackFront[v];
+    }
+  }
+  for (Index p = 0; p < el.patchCount; ++p)
+  {
+    const Index k = el.patchElement(p);
+    const Face face = g.patchLocation(p).face;
+    const BoundaryCondition& bc = scene.boundary[static_cast<int>(face)];
+    sys.D[k] = dl.patchPower[p];
+    if (bc.type == BoundaryCondition::Type::Wall)
+    {
+      sys.e[k] = bc.emission[ch];
+      sys.c[k] = bc.reflectance[ch] / g.patchArea(face);
+    }
+    else
+    {
+      sys.e[k] = kPi * bc.radiance[ch];
+    }
+  }
+  return sys;
+}
+
+struct LinearSolveResult
+{
+  Eigen::VectorXd x;
+  long long iterations = 0;
+  double residual = 0.0; ///< max |x - (e + c (S x + D))|
+};
+
+LinearSolveResult solveSystem(const RowMatrix& S, const ChannelSystem& sys, const DenseSolverOptions& opt)
+{
+  const Index n = S.rows();
+  LinearSolveResult out;
+  out.x = sys.e;
+  std::vector<Index> unknown;
+  for (Index i = 0; i < n; ++i)
+  {
+    if (sys.c[i] > 0.0)
+    {
+      unknown.push_back(i);
+    }
+  }
+  const Index m = Index(unknown.size());
+  if (m > 0)
+  {
+    // Right-hand side with the fixed radiosities moved over.
+    Eigen::VectorXd fixed = sys.e;
+    for (Index i : unknown)
+    {
+      fixed[i] = 0.0;
+    }
+    const Eigen::VectorXd Sfixed = S * fixed;
+    Eigen::MatrixXd A(m, m);
+    Eigen::VectorXd b(m);
+    for (Index r = 0; r < m; ++r)
+    {
+      const Index i = unknown[r];
+      for (Index col = 0; col < m; ++col)
+      {
+        A(r, col) = -sys.c[i] * S(i, unknown[col]);
+      }
+      A(r, r) += 1.0;
+      b[r] = sys.e[i] + sys.c[i] * (sys.D[i] + Sfixed[i]);
+      // Jacobi scaling: dividing by 1 - c S_ii solves the self term implicitly.
+      const double diag = A(r, r);
+      A.row(r) /= diag;
+      b[r] /= diag;
+    }
+    Eigen::BiCGSTAB<Eigen::MatrixXd, Eigen::IdentityPreconditioner> solver;
+    solver.setTolerance(opt.tolerance);
+    solver.setMaxIterations(opt.maxIterations);
+    solver.compute(A);
+    Eigen::VectorXd y = solver.solve(b);
+    out.iterations = solver.iterations();
+    if (solver.info() != Eigen::Success || !y.allFinite() || (A * y - b).norm() > 10 * opt.tolerance * b.norm())
+    {
+      y = A.partialPivLu().solve(b); // robust fallback
+    }
+    for (Index r = 0; r < m; ++r)
+    {
+      out.x[unknown[r]] = y[r];
+    }
+  }
+  const Eigen::VectorXd update = sys.e + sys.c.cwiseProduct(S * out.x + sys.D);
+  out.residual = n > 0 ? (update - out.x).cwiseAbs().maxCoeff() : 0.0;
+  return out;
+}
+
+struct ChannelSizes
+{
+  Index elements = 0, vacuumRows = 0, unknowns = 0;
+};
+
+ChannelSizes channelSizes(const Scene& scene, int ch)
+{
+  ChannelSizes s;
+  const Grid& g = scene.grid;
+  s.elements = g.patchCount();
+  for (int f = 0; f < kFaceCount; ++f)
+  {
+    if (scene.boundary[f].type == BoundaryCondition::Type::Wall && scene.boundary[f].reflectance[ch] > 0.0)
+    {
+      s.unknowns += g.facePatchCount(Face(f));
+    }
+  }
+  for (Index v = 0; v < g.voxelCount(); ++v)
+  {
+    const bool normal = scene.hasNormal(v);
+    if (scene.kappaTAt(v, ch) > 0.0)
+    {
+      s.elements += normal ? 2 : 1;
+      s.unknowns += (scene.sigmaIAt(v, ch) > 0.0) + (normal && scene.sigmaDAt(v, ch) > 0.0);
+    }
+    else
+    {
+      s.vacuumRows += normal ? 2 : 1;
+    }
+  }
+  return s;
+}
+
+bool sameExtinction(const Scene& s, int a, int b)
+{
+  for (Index v = 0; v < s.grid.voxelCount(); ++v)
+  {
+    if (s.kappaTAt(v, a) != s.kappaTAt(v, b))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+double estimateDenseSolverBytes(const Scene& scene)
+{
+  double peak = 0.0;
+  for (int ch = 0; ch < scene.channels; ++ch)
+  {
+    const ChannelSizes s = channelSizes(scene, ch);
+    const double n = double(s.elements);
+    const double bytes = 8.0 * (n * n + double(s.vacuumRows) * n + double(s.unknowns) * double(s.unknowns));
+    peak = std::max(peak, bytes);
+  }
+  return peak;
+}
+
+Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
+{
+  const auto start = std::chrono::steady_clock::now();
+  scene.validate();
+  const double bytes = estimateDenseSolverBytes(scene);
+  if (bytes > options.memoryLimitBytes)
+  {
+    std::ostringstream m;
+    m << "the dense solver would need about " << bytes / (1024.0 * 1024.0) << " MiB for "
+      << scene.grid.voxelCount() << " voxels and " << scene.grid.patchCount()
+      << " boundary patches, above its limit of " << options.memoryLimitBytes / (1024.0 * 1024.0)
+      << " MiB; use the hierarchical solver for grids this large";
+    throw Error(m.str());
+  }
+  const Grid& g = scene.grid;
+  const int C = scene.channels;
+  const Index nv = g.voxelCount(), np = g.patchCount();
+  Solution sol;
+  sol.channels = C;
+  for (auto* a : { &sol.G, &sol.Gplus, &sol.QI, &sol.QD, &sol.absorbed })
+  {
+    a->assign(std::size_t(nv) * C, 0.0);
+  }
+  sol.B.assign(std::size_t(np) * C, 0.0);
+  sol.H.assign(std::size_t(np) * C, 0.0);
+  sol.energy.resize(C);
+  sol.stats.method = "dense";
+  sol.stats.converged = true;
+  sol.stats.estimatedBytes = std::size_t(bytes);
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  const ProgressRange progress(options.progress, 0.0, 1.0);
+  std::unique_ptr<ExchangeAreas> ex;
+  int exChannel = -1;
+  const double V = g.voxelVolume();
+  for (int ch = 0; ch < C; ++ch)
+  {
+    const ProgressRange chProgress = progress.sub(double(ch) / C, double(ch + 1) / C);
+    if (!ex || !sameExtinction(scene, exChannel, ch))
+    {
+      ex.reset();
+      arena.execute([&] {
+        ex = std::make_unique<ExchangeAreas>(
+          computeExchangeAreas(scene, ch, options.quadrature, {}, chProgress.sub(0.0, 0.8)));
+      });
+      exChannel = ch;
+      const double n = double(ex->elements.size());
+      sol.stats.links += static_cast<long long>(n * (n + 1) / 2);
+      sol.stats.quadratureError = std::max(sol.stats.quadratureError, ex->quadratureError);
+    }
+    DirectLighting dl;
+    arena.execute([&] { dl = computeDirectLight(scene, ch, options.quadrature); });
+    chProgress.report(0.85);
+    const ExchangeElements& el = ex->elements;
+    const ChannelSystem sys = buildSystem(scene, ch, el, dl);
+    LinearSolveResult lin;
+    arena.execute([&] { lin = solveSystem(ex->S, sys, options); });
+    chProgress.report(0.95);
+    sol.stats.iterations += lin.iterations;
+    sol.stats.finalUnshot = std::max(sol.stats.finalUnshot, lin.residual);
+    const Eigen::VectorXd x = lin.x;
+    const Eigen::VectorXd collided = ex->S * x + sys.D;
+
+    for (Index v = 0; v < nv; ++v)
+    {
+      const std::size_t o = std::size_t(v) * C + ch;
+      const double kt = scene.kappaTAt(v, ch);
+      if (el.full[v] >= 0)
+      {
+        sol.G[o] = collided[el.full[v]] / (kt * V);
+        sol.QI[o] = x[el.full[v]];
+      }
+      else
+      {
+        sol.G[o] = ex->vacuumGather.row(ex->vacuumFullRow[v]).dot(x) + dl.track[v] / V;
+      }
+      if (el.front[v] >= 0)
+      {
+        sol.Gplus[o] = collided[el.front[v]] / (kt * V);
+        sol.QD[o] = x[el.front[v]];
+      }
+      else if (ex->vacuumFrontRow[v] >= 0)
+      {
+        sol.Gplus[o] = ex->vacuumGather.row(ex->vacuumFrontRow[v]).dot(x) + dl.trackFront[v] / V;
+      }
+      sol.absorbed[o] = scene.kappaAAt(v, ch) * sol.G[o] + scene.sigmaDAt(v, ch) * (sol.G[o] - sol.Gplus[o]);
+    }
+    for (Index p = 0; p < np; ++p)
+    {
+      const std::size_t o = std::size_t(p) * C + ch;
+      sol.B[o] = x[el.patchElement(p)];
+      sol.H[o] = collided[el.patchElement(p)] / g.patchArea(g.patchLocation(p).face);
+    }
+    sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
+  }
+  progress.report(1.0);
+  sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return sol;
+}
+
+} // namespace volrad

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file DirectLight.h
+/// @brief Light from directional and point lights before any scattering:
+/// attenuated by the medium, entering through open faces only (walls block
+/// it), reaching voxels and the inner side of boundary patches.
+///
+/// Per voxel it returns the track integral T_v = sum over rays of
+/// power * transmittance-weighted length in v, so that the direct incident
+/// radiation is G_v = T_v / V and the power colliding in v is kappa_t T_v
+/// (exact along each ray, also where kappa_t = 0).
+#pragma once
+
+#include "volrad/Quadrature.h"
+#include "volrad/Scene.h"
+
+#include <vector>
+
+namespace volrad {
+
+struct DirectLighting
+{
+  std::vector<double> track;      ///< per voxel [W * length]
+  std::vector<double> trackFront; ///< the part arriving from the voxel's front (n . w < 0)
+  std::vector<double> patchPower; ///< per boundary patch: power arriving from inside [W]
+  double entering = 0.0;          ///< power that entered the domain [W]
+};
+
+DirectLighting computeDirectLight(const Scene& scene, int channel, const QuadratureSettings& q);
+
+} // namespace volrad

@@ -1,0 +1,468 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/ExchangeAreas.h"
+
+#include "volrad/Error.h"
+#include "volrad/Sampling.h"
+#include "volrad/VoxelTraversal.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace volrad {
+
+namespace {
+
+/// Below this transmittance a ray carries nothing measurable any more.
+constexpr double kNegligibleTransmittance = 1e-13;
+
+struct ChannelMedium
+{
+  const Scene& scene;
+  std::vector<double> kappaT;
+
+  ChannelMedium(const Scene& s, int c)
+    : scene(s)
+    , kappaT(std::size_t(s.grid.voxelCount()))
+  {
+    for (Index v = 0; v < s.grid.voxelCount(); ++v)
+    {
+      kappaT[v] = s.kappaTAt(v, c);
+    }
+  }
+  double normalDot(Index v, const Vec3& d) const
+  {
+    const Normal& n = scene.normals[v];
+    return n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+  }
+};
+
+/// Follows one ray and adds to each crossed element the probability that
+/// its first collision is there (exact for the piecewise-constant medium).
+/// rowB, when given, receives the same deposits (the emitter's front row).
+/// Everything is multiplied by weight.
+void depositRayWeighted(const ChannelMedium& m, const ExchangeElements& el, const Vec3& x, const Vec3& d,
+  double weight, double* rowA, double* rowB)
+{
+  double T = weight;
+  const DomainExit exit = traverseVoxels(m.scene.grid, x, d, std::numeric_limits<double>::infinity(),
+    [&](Index v, double length, double) {
+      const double k = m.kappaT[v];
+      if (k <= 0.0)
+      {
+        return true;
+      }
+      const double e = std::exp(-k * length);
+      const double p = T * (1.0 - e);
+      T *= e;
+      const Index ef = el.full[v];
+      rowA[ef] += p;
+      if (rowB)
+      {
+        rowB[ef] += p;
+      }
+      const Index er = el.front[v];
+      // Light travelling along d reaches v's front side from v's front iff
+      // the emitter lies in front of v, i.e. n_v . d < 0.
+      if (er >= 0 && m.normalDot(v, d) < 0.0)
+      {
+        rowA[er] += p;
+        if (rowB)
+        {
+          rowB[er] += p;
+        }
+      }
+      return T > kNegligibleTransmittance * weight;
+    });
+  if (exit.exited)
+  {
+    const Index e = el.patchElement(exit.patch);
+    rowA[e] += T;
+    if (rowB)
+    {
+      rowB[e] += T;
+    }
+  }
+}
+
+/// Chord length from x (on the boundary of the box [lo, lo + size]) back
+/// through the box along -d.
+double chordBack(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& size)
+{
+  double l = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (d[a] > 0.0)
+    {
+      l = std::min(l, (x[a] - lo[a]) / d[a]);
+    }
+    else if (d[a] < 0.0)
+    {
+      l = std::min(l, (x[a] - lo[a] - size[a]) / d[a]);
+    }
+  }
+  return std::max(0.0, l);
+}
+
+/// Gathers the rows of voxel v (kappa_t > 0) over the lines that leave it:
+/// each line is parametrised by its exit point on one of v's faces and its
+/// direction (d mu = cos(theta) dA dw), and the emission of v along it is
+/// integrated exactly, 1 - exp(-kappa_t l). The part collided inside v,
+/// kappa_t l - (1 - exp(-kappa_t l)), is v's self term. Lines whose
+/// direction leaves through v's front (n_v . d > 0) also go into rowFront.
+/// Returns the total weight (the voxel's surface area).
+void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index v,
+  const QuadratureSettings& q, double* rowFull, double* rowFront)
+{
+  const Grid& g = m.scene.grid;
+  const double kt = m.kappaT[v];
+  const Index self = el.full[v];
+  const Index selfFront = el.front[v];
+  const Vec3 lo = g.voxelLower(v);
+  const auto c = g.ijk(v);
+  Rng rng(q.seed, std::uint64_t(v));
+  for (int fi = 0; fi < kFaceCount; ++fi)
+  {
+    const Face f = static_cast<Face>(fi);
+    const int axis = faceAxis(f);
+    const Vec3 outward = -faceInwardNormal(f);
+    Vec3 faceLo = lo;
+    if (faceIsMax(f))
+    {
+      faceLo[axis] += g.spacing[axis];
+    }
+    Vec3 size = g.spacing;
+    size[axis] = 0.0;
+    const double area = g.patchArea(f);
+    const auto pts = stratifiedPoints(faceLo, size, q.voxelPointsPerAxis, rng);
+    const double w = area / double(pts.size() * q.voxelDirections);
+    std::vector<Vec3> cosDirs;
+    // A face on the domain boundary sends its lines straight into a patch.
+    const bool boundary = faceIsMax(f) ? c[axis] == g.dims[axis] - 1 : c[axis] == 0;
+    const Index patch = boundary ? el.patchElement(g.patchIndex(f, c[faceAxesInPlane(f)[0]], c[faceAxesInPlane(f)[1]])) : -1;
+    const Eigen::Matrix3d frame = frameAround(outward);
+    for (const Vec3& x : pts)
+    {
+      fibonacciCosineHemisphere(q.voxelDirections, rng.uniform(), rng.uniform(), cosDirs);
+      for (const Vec3& d0 : cosDirs)
+      {
+        const Vec3 d = frame * d0;
+        const double l = chordBack(x, d, lo, g.spacing);
+        const double escape = -std::expm1(-kt * l);
+        const double selfCollided = kt * l - escape;
+        const bool front = rowFront && m.normalDot(v, d) > 0.0;
+        // Self terms: emitted along this line and collided in v itself.
+        rowFull[self] += w * selfCollided;
+        if (selfFront >= 0 && m.normalDot(v, d) < 0.0)
+        {
+          rowFull[selfFront] += w * selfCollided;
+        }
+        if (front)
+        {
+          rowFront[self] += w * selfCollided;
+        }
+        if (boundary)
+        {
+          rowFull[patch] += w * escape;
+          if (front)
+          {
+            rowFront[patch] += w * escape;
+          }
+          continue;
+        }
+        // The escaping part, carried on to its first collision.
+        depositRayWeighted(m, el, x, d, w * escape, rowFull, front ? rowFront : nullptr);
+      }
+    }
+  }
+}
+
+/// Gathers the G weights of a voxel with kappa_t = 0 from stratified
+/// interior points (it emits nothing, so only its view matters).
+double gatherVacuumVoxel(const ChannelMedium& m, const ExchangeElements& el, Index v,
+  const std::vector<Vec3>& dirs, const QuadratureSettings& q, double* rowFull, double* rowFront)
+{
+  const Grid& g = m.scene.grid;
+  Rng rng(q.seed, std::uint64_t(v));
+  const auto pts = stratifiedPoints(g.voxelLower(v), g.spacing, q.voxelPointsPerAxis, rng);
+  for (const Vec3& x : pts)
+  {
+    const Eigen::Matrix3d R = sampleRotation(rng);
+    for (const Vec3& d0 : dirs)
+    {
+      const Vec3 d = R * d0;
+      double* front = (rowFront && m.normalDot(v, d) > 0.0) ? rowFront : nullptr;
+      depositRayWeighted(m, el, x, d, 1.0, rowFull, front);
+    }
+  }
+  return double(pts.size() * dirs.size());
+}
+
+/// Gathers the row of boundary patch p with cosine-weighted directions.
+double gatherPatch(const ChannelMedium& m, const ExchangeElements& el, Index p,
+  const QuadratureSettings& q, double* row)
+{
+  const Grid& g = m.scene.grid;
+  const PatchLocation loc = g.patchLocation(p);
+  Rng rng(q.seed ^ 0x7061746368ULL, std::uint64_t(p));
+  Vec3 size = g.spacing;
+  size[faceAxis(loc.face)] = 0.0;
+  const auto pts = stratifiedPoints(g.patchLower(p), size, q.patchPointsPerAxis, rng);
+  const Eigen::Matrix3d frame = frameAround(faceInwardNormal(loc.face));
+  std::vector<Vec3> cosDirs;
+  for (const Vec3& x : pts)
+  {
+    fibonacciCosineHemisphere(q.patchDirections, rng.uniform(), rng.uniform(), cosDirs);
+    for (const Vec3& d0 : cosDirs)
+    {
+      depositRayWeighted(m, el, x, frame * d0, 1.0, row, nullptr);
+    }
+  }
+  return double(pts.size() * cosDirs.size());
+}
+
+/// Conjugate gradients with a Jacobi preconditioner on the SPD smoothing
+/// system M mu = r, M = S_PP + diag(rowSum - diag(S_PP)).
+Eigen::VectorXd solveSmoothing(const RowMatrix& S, Index nP, const Eigen::VectorXd& rowSum,
+  const Eigen::VectorXd& r)
+{
+  const auto SPP = S.topLeftCorner(nP, nP);
+  const Eigen::VectorXd diagExtra = rowSum - SPP.diagonal();
+  auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    return SPP * v + diagExtra.cwiseProduct(v);
+  };
+  Eigen::VectorXd invDiag(nP);
+  for (Index i = 0; i < nP; ++i)
+  {
+    invDiag[i] = rowSum[i] > 0.0 ? 1.0 / rowSum[i] : 0.0;
+  }
+  Eigen::VectorXd mu = Eigen::VectorXd::Zero(nP);
+  Eigen::VectorXd res = r;
+  Eigen::VectorXd z = invDiag.cwiseProduct(res);
+  Eigen::VectorXd p = z;
+  double rz = res.dot(z);
+  const double r0 = r.norm();
+  for (int it = 0; it < 1000 && res.norm() > 1e-15 * r0 + 1e-300; ++it)
+  {
+    const Eigen::VectorXd Ap = apply(p);
+    const double pAp = p.dot(Ap);
+    if (!(pAp > 0.0))
+    {
+      break;
+    }
+    const double alpha = rz / pAp;
+    mu += alpha * p;
+    res -= alpha * Ap;
+    z = invDiag.cwiseProduct(res);
+    const double rzNew = res.dot(z);
+    p = z + (rzNew / rz) * p;
+    rz = rzNew;
+  }
+  return mu;
+}
+
+} // namespace
+
+ExchangeElements makeExchangeElements(const Scene& scene, int channel)
+{
+  ExchangeElements el;
+  const Index nv = scene.grid.voxelCount();
+  el.full.assign(nv, -1);
+  el.front.assign(nv, -1);
+  for (Index v = 0; v < nv; ++v)
+  {
+    if (scene.kappaTAt(v, channel) > 0.0)
+    {
+      el.full[v] = el.fullCount++;
+    }
+  }
+  el.patchCount = scene.grid.patchCount();
+  for (Index v = 0; v < nv; ++v)
+  {
+    if (el.full[v] >= 0 && scene.hasNormal(v))
+    {
+      el.front[v] = el.partitionSize() + el.frontCount++;
+    }
+  }
+  el.voxelOf.assign(el.size(), -1);
+  for (Index v = 0; v < nv; ++v)
+  {
+    if (el.full[v] >= 0)
+    {
+      el.voxelOf[el.full[v]] = v;
+    }
+    if (el.front[v] >= 0)
+    {
+      el.voxelOf[el.front[v]] = v;
+    }
+  }
+  return el;
+}
+
+double exchangeRowTarget(const Scene& scene, int channel, const ExchangeElements& el, Index e)
+{
+  if (el.isPatch(e))
+  {
+    return scene.grid.patchArea(scene.grid.patchLocation(e - el.fullCount).face);
+  }
+  const double kv = scene.kappaTAt(el.voxelOf[e], channel) * scene.grid.voxelVolume();
+  return el.isFront(e) ? 2.0 * kv : 4.0 * kv;
+}
+
+std::size_t exchangeAreasBytes(Index elements, Index vacuumRows)
+{
+  return sizeof(double) * (std::size_t(elements) * std::size_t(elements) + std::size_t(vacuumRows) * elements);
+}
+
+ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const QuadratureSettings& q,
+  const ExchangeOptions& options, const ProgressRange& progress)
+{
+  if (q.voxelPointsPerAxis < 1 || q.voxelDirections < 1 || q.patchPointsPerAxis < 1 || q.patchDirections < 1)
+  {
+    throw Error("quadrature settings must all be >= 1");
+  }
+  const Grid& g = scene.grid;
+  const ChannelMedium medium(scene, channel);
+  ExchangeAreas out;
+  ExchangeElements& el = out.elements;
+  el = makeExchangeElements(scene, channel);
+  const Index n = el.size();
+  const Index nv = g.voxelCount();
+
+  Index vacuumRows = 0;
+  out.vacuumFullRow.assign(nv, -1);
+  out.vacuumFrontRow.assign(nv, -1);
+  for (Index v = 0; v < nv; ++v)
+  {
+    if (el.full[v] < 0)
+    {
+      out.vacuumFullRow[v] = vacuumRows++;
+      if (scene.hasNormal(v))
+      {
+        out.vacuumFrontRow[v] = vacuumRows++;
+      }
+    }
+  }
+  out.S.setZero(n, n);
+  out.vacuumGather.setZero(vacuumRows, n);
+
+  const auto vacuumDirs = fibonacciSphere(4 * q.voxelDirections);
+
+  // One unit of work per voxel, then per patch; blocks keep progress and
+  // abort responsive and on the calling thread.
+  const Index units = nv + el.patchCount;
+  const Index block = std::max<Index>(64, units / 100);
+  const ProgressRange gatherProgress = progress.sub(0.0, 0.9);
+  for (Index b0 = 0; b0 < units; b0 += block)
+  {
+    const Index b1 = std::min(units, b0 + block);
+    tbb::parallel_for(tbb::blocked_range<Index>(b0, b1), [&](const tbb::blocked_range<Index>& r) {
+      for (Index u = r.begin(); u != r.end(); ++u)
+      {
+        if (u < nv)
+        {
+          const Index v = u;
+          if (el.full[v] >= 0)
+          {
+            double* rowFront = el.front[v] >= 0 ? out.S.row(el.front[v]).data() : nullptr;
+            gatherVoxelLines(medium, el, v, q, out.S.row(el.full[v]).data(), rowFront);
+            continue;
+          }
+          double* rowFull = out.vacuumGather.row(out.vacuumFullRow[v]).data();
+          double* rowFront =
+            out.vacuumFrontRow[v] >= 0 ? out.vacuumGather.row(out.vacuumFrontRow[v]).data() : nullptr;
+          const double scale = 4.0 / gatherVacuumVoxel(medium, el, v, vacuumDirs, q, rowFull, rowFront);
+          for (Index e = 0; e < n; ++e)
+          {
+            rowFull[e] *= scale; // G weights: 4 pi sr / pi per unit radiosity
+            if (rowFront)
+            {
+              rowFront[e] *= scale;
+            }
+          }
+        }
+        else
+        {
+          const Index p = u - nv;
+          double* row = out.S.row(el.patchElement(p)).data();
+          const double rays = gatherPatch(medium, el, p, q, row);
+          const double area = g.patchArea(g.patchLocation(p).face);
+          for (Index e = 0; e < n; ++e)
+          {
+            row[e] *= area / rays;
+          }
+        }
+      }
+    });
+    gatherProgress.report(double(b1) / double(units));
+  }
+
+  if (options.symmetrize)
+  {
+    // Each row is a ray estimate whose relative variance for a pair (a, b)
+    // falls as the number of a's rays that reach b, which is proportional to
+    // a's rays per unit of its emitting surface. Weighting the two
+    // estimates by their inverse variances gives one weight per element.
+    const Vec3& h = g.spacing;
+    const double voxelSurface = 2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]);
+    const double voxelRays = 6.0 * q.voxelPointsPerAxis * q.voxelPointsPerAxis * q.voxelDirections;
+    const double patchRays = double(q.patchPointsPerAxis) * q.patchPointsPerAxis * q.patchDirections;
+    Eigen::VectorXd u(n);
+    for (Index e = 0; e < n; ++e)
+    {
+      u[e] = el.isPatch(e) ? patchRays / exchangeRowTarget(scene, channel, el, e) : voxelRays / voxelSurface;
+    }
+    for (Index i = 0; i < n; ++i)
+    {
+      for (Index j = i + 1; j < n; ++j)
+      {
+        const double s = (u[i] * out.S(i, j) + u[j] * out.S(j, i)) / (u[i] + u[j]);
+        out.S(i, j) = s;
+        out.S(j, i) = s;
+      }
+    }
+  }
+  if (options.symmetrize && options.smooth && n > 0)
+  {
+    const Index nP = el.partitionSize();
+    Eigen::VectorXd rowSum = out.S.topLeftCorner(nP, nP).rowwise().sum();
+    Eigen::VectorXd residual(nP);
+    for (Index e = 0; e < nP; ++e)
+    {
+      residual[e] = exchangeRowTarget(scene, channel, el, e) - rowSum[e];
+    }
+    const Eigen::VectorXd mu = solveSmoothing(out.S, nP, rowSum, residual);
+    double maxChange = 0.0;
+    for (Index i = 0; i < nP; ++i)
+    {
+      for (Index j = 0; j < nP; ++j)
+      {
+        const double rel = (i == j) ? mu[i] : mu[i] + mu[j];
+        if (out.S(i, j) != 0.0)
+        {
+          maxChange = std::max(maxChange, std::abs(rel));
+        }
+        out.S(i, j) *= 1.0 + rel;
+      }
+    }
+    // Front sides: their partition row sum is 2 kappa_t V; a uniform scale
+    // of the row (and of its mirror column) restores it.
+    for (Index f = nP; f < n; ++f)
+    {
+      const double sum = out.S.row(f).head(nP).sum();
+      const double target = exchangeRowTarget(scene, channel, el, f);
+      const double scale = sum > 0.0 ? target / sum : 1.0;
+      maxChange = std::max(maxChange, std::abs(scale - 1.0));
+      out.S.row(f).head(nP) *= scale;
+      out.S.col(f).head(nP) *= scale;
+    }
+    out.quadratureError = maxChange;
+  }
+  progress.report(1.0);
+  return out;
+}
+
+} // namespace volrad
