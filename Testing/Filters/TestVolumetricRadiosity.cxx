@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The filter against the core, for every scalar type, extents and origins,
+// and its errors.
+#include "vtkVolumetricRadiosity.h"
+
+#include "vtkCallbackCommand.h"
+#include "vtkCommand.h"
+#include "vtkDoubleArray.h"
+#include "vtkExecutive.h"
+#include "vtkFieldData.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkIntArray.h"
+#include "vtkNew.h"
+#include "vtkPointData.h"
+#include "vtkShortArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkUnsignedCharArray.h"
+
+#include "volrad/DenseSolver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+
+/// An 8x7x6 image with integer-valued coefficients (exact in every type).
+template <class ArrayT>
+vtkSmartPointer<vtkImageData> makeImage(int extentShift = 0)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetExtent(extentShift, extentShift + 7, 0, 6, -extentShift, 5 - extentShift);
+  image->SetSpacing(0.5, 0.25, 0.4);
+  image->SetOrigin(1.0 - extentShift * 0.5, -2.0, 3.0 + extentShift * 0.4);
+  auto add = [&](const char* name, auto f) {
+    vtkNew<ArrayT> a;
+    a->SetName(name);
+    a->SetNumberOfTuples(image->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+    {
+      a->SetTuple1(i, f(i));
+    }
+    image->GetPointData()->AddArray(a);
+  };
+  add("kappa_a", [](vtkIdType i) { return double(1 + i % 3); });
+  add("sigma_i", [](vtkIdType i) { return double((i * 7) % 5); });
+  add("E_I", [](vtkIdType i) { return i % 11 == 0 ? 2.0 : 0.0; });
+  return image;
+}
+
+const char* kScene = R"({"version": 1, "solver": {"method": "dense"},
+  "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "irradiance": 2}],
+  "boundary": {"zmin": {"type": "wall", "reflectance": 0.5}}})";
+
+std::vector<float> runFilter(vtkImageData* image, const char* scene, std::string* error = nullptr)
+{
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(scene);
+  std::string messages;
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetClientData(&messages);
+  cb->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+    *static_cast<std::string*>(self) += static_cast<const char*>(data);
+  });
+  f->AddObserver(vtkCommand::ErrorEvent, cb);
+  f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  f->Update();
+  if (error)
+  {
+    *error = messages;
+  }
+  std::vector<float> g;
+  if (auto* a = vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation")))
+  {
+    g.assign(a->GetPointer(0), a->GetPointer(0) + a->GetNumberOfValues());
+  }
+  return g;
+}
+
+} // namespace
+
+TEST(VolumetricRadiosity, OutputEqualsTheCoreSolution)
+{
+  auto image = makeImage<vtkDoubleArray>();
+  const std::vector<float> g = runFilter(image, kScene);
+  ASSERT_EQ(g.size(), std::size_t(image->GetNumberOfPoints()));
+
+  volrad::Scene s;
+  s.grid.dims = { 8, 7, 6 };
+  s.grid.spacing = volrad::Vec3(0.5, 0.25, 0.4);
+  s.grid.origin = volrad::Vec3(1.0, -2.0, 3.0);
+  s.allocate();
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    s.kappaA[i] = float(1 + i % 3);
+    s.sigmaI[i] = float((i * 7) % 5);
+    s.emissionI[i] = i % 11 == 0 ? 2.0f : 0.0f;
+  }
+  s.directionalLights.push_back({ volrad::Vec3(0.3, -0.2, -1), volrad::uniformChannels(2.0) });
+  s.boundary[4].type = volrad::BoundaryCondition::Type::Wall;
+  s.boundary[4].reflectance = volrad::uniformChannels(0.5);
+  const volrad::Solution sol = volrad::solveDense(s);
+  for (std::size_t i = 0; i < g.size(); ++i)
+  {
+    EXPECT_NEAR(g[i], sol.G[i], 1e-5 * sol.G[i] + 1e-12) << i;
+  }
+}
+
+TEST(VolumetricRadiosity, EveryScalarTypeGivesTheSameField)
+{
+  const std::vector<float> reference = runFilter(makeImage<vtkDoubleArray>(), kScene);
+  EXPECT_EQ(runFilter(makeImage<vtkFloatArray>(), kScene), reference);
+  EXPECT_EQ(runFilter(makeImage<vtkIntArray>(), kScene), reference);
+  EXPECT_EQ(runFilter(makeImage<vtkShortArray>(), kScene), reference);
+  EXPECT_EQ(runFilter(makeImage<vtkUnsignedCharArray>(), kScene), reference);
+}
+
+TEST(VolumetricRadiosity, NonZeroExtentsGiveTheSameField)
+{
+  // Same world-space voxels, described with a shifted extent and origin.
+  EXPECT_EQ(runFilter(makeImage<vtkDoubleArray>(3), kScene), runFilter(makeImage<vtkDoubleArray>(0), kScene));
+}
+
+TEST(VolumetricRadiosity, OutputArraysAndStatistics)
+{
+  auto image = makeImage<vtkFloatArray>();
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(kScene);
+  f->Update();
+  vtkImageData* out = f->GetOutput();
+  for (const char* name : { "IncidentRadiation", "IsotropicRadiosity", "DiffuseRadiosity", "FrontIncidentRadiation",
+         "AbsorbedPower", "kappa_a" })
+  {
+    EXPECT_NE(out->GetPointData()->GetArray(name), nullptr) << name;
+  }
+  for (const char* name : { "EnergyEmitted", "EnergyAbsorbed", "EnergyEscaped", "EnergyAbsorbedWalls", "Iterations",
+         "Links", "SolveSeconds", "FinalUnshot" })
+  {
+    EXPECT_NE(out->GetFieldData()->GetArray(name), nullptr) << name;
+  }
+  const double emitted = out->GetFieldData()->GetArray("EnergyEmitted")->GetComponent(0, 0);
+  const double removed = out->GetFieldData()->GetArray("EnergyAbsorbed")->GetComponent(0, 0) +
+    out->GetFieldData()->GetArray("EnergyAbsorbedWalls")->GetComponent(0, 0) +
+    out->GetFieldData()->GetArray("EnergyEscaped")->GetComponent(0, 0);
+  EXPECT_NEAR(removed / emitted, 1.0, 1e-6);
+}
+
+TEST(VolumetricRadiosity, BadInputGivesAClearErrorAndNoField)
+{
+  std::string error;
+  EXPECT_TRUE(runFilter(makeImage<vtkFloatArray>(), R"({"version": 1, "arrays": {"absorption": "mu"}})", &error).empty());
+  EXPECT_NE(error.find("no point-data array 'mu'"), std::string::npos) << error;
+
+  EXPECT_TRUE(runFilter(makeImage<vtkFloatArray>(), R"({"version": 1, "bogus": 1})", &error).empty());
+  EXPECT_NE(error.find("'bogus'"), std::string::npos) << error;
+
+  auto nan = makeImage<vtkFloatArray>();
+  nan->GetPointData()->GetArray("kappa_a")->SetTuple1(5, std::nan(""));
+  EXPECT_TRUE(runFilter(nan, kScene, &error).empty());
+  EXPECT_NE(error.find("kappa_a = nan"), std::string::npos) << error;
+
+  auto negative = makeImage<vtkFloatArray>();
+  negative->GetPointData()->GetArray("sigma_i")->SetTuple1(7, -2.0);
+  EXPECT_TRUE(runFilter(negative, kScene, &error).empty());
+  EXPECT_NE(error.find("sigma_i = -2"), std::string::npos) << error;
+
+  auto rgb = makeImage<vtkFloatArray>();
+  vtkNew<vtkFloatArray> two;
+  two->SetName("kappa_a");
+  two->SetNumberOfComponents(2);
+  two->SetNumberOfTuples(rgb->GetNumberOfPoints());
+  two->Fill(1.0);
+  rgb->GetPointData()->AddArray(two);
+  EXPECT_TRUE(runFilter(rgb, R"({"version": 1, "channels": 3})", &error).empty());
+  EXPECT_NE(error.find("2 components"), std::string::npos) << error;
+
+  vtkNew<vtkImageData> empty;
+  EXPECT_TRUE(runFilter(empty, kScene, &error).empty());
+  EXPECT_FALSE(error.empty());
+}
+
+TEST(VolumetricRadiosity, OneVoxelAndFlatImagesSolve)
+{
+  for (int nz : { 1, 4 })
+  {
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(nz == 1 ? 1 : 5, nz == 1 ? 1 : 3, nz);
+    vtkNew<vtkFloatArray> k;
+    k->SetName("kappa_a");
+    k->SetNumberOfTuples(image->GetNumberOfPoints());
+    k->Fill(1.0);
+    vtkNew<vtkFloatArray> e;
+    e->SetName("E_I");
+    e->SetNumberOfTuples(image->GetNumberOfPoints());
+    e->Fill(1.0);
+    image->GetPointData()->AddArray(k);
+    image->GetPointData()->AddArray(e);
+    const auto g = runFilter(image, R"({"version": 1, "boundary": {"default": {"type": "open", "radiance": 0.3183098861837907}}})");
+    ASSERT_EQ(g.size(), std::size_t(image->GetNumberOfPoints()));
+    for (float x : g)
+    {
+      EXPECT_NEAR(x, 4.0, 1e-4); // a white furnace: G = 4E whatever the shape
+    }
+  }
+}
