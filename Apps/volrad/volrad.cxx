@@ -141,6 +141,17 @@ int main(int argc, char* argv[])
     return fail("'" + input + "': this version reads VTK XML image data (.vti) only");
   }
 
+  // Fail before a long solve if the output cannot be written at all.
+  const std::string partial = output + ".partial";
+  {
+    std::ofstream probe(partial);
+    if (!probe)
+    {
+      return fail("cannot write '" + output + "'");
+    }
+  }
+  std::remove(partial.c_str());
+
   ErrorCollector errors;
   vtkNew<vtkCallbackCommand> onError;
   onError->SetCallback(&ErrorCollector::callback);
@@ -171,7 +182,6 @@ int main(int argc, char* argv[])
   }
 
   // Write next to the target, then rename: no partial file on failure.
-  const std::string partial = output + ".partial";
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(partial.c_str());
   writer->SetInputData(result);

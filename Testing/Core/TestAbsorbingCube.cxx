@@ -14,7 +14,20 @@ using namespace volrad::test;
 
 namespace {
 
-/// Gauss-Legendre nodes and weights on [0, 1].
+/// P_n(z) and the derivative P_n'(z) of the Legendre polynomial.
+std::pair<double, double> legendre(int n, double z)
+{
+  double p0 = 1.0, p1 = 0.0;
+  for (int j = 0; j < n; ++j)
+  {
+    const double p2 = p1;
+    p1 = p0;
+    p0 = ((2.0 * j + 1.0) * z * p1 - j * p2) / (j + 1.0);
+  }
+  return { p0, n * (z * p0 - p1) / (z * z - 1.0) };
+}
+
+/// Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n's roots).
 void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w)
 {
   x.resize(n);
@@ -24,29 +37,14 @@ void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w)
     double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
     for (int it = 0; it < 100; ++it)
     {
-      double p0 = 1.0, p1 = 0.0;
-      for (int j = 0; j < n; ++j)
-      {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * j + 1.0) * z * p1 - j * p2) / (j + 1.0);
-      }
-      const double dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-15)
+      const auto [p, dp] = legendre(n, z);
+      z -= p / dp;
+      if (std::abs(p / dp) < 1e-15)
       {
         break;
       }
     }
-    double p0 = 1.0, p1 = 0.0;
-    for (int j = 0; j < n; ++j)
-    {
-      const double p2 = p1;
-      p1 = p0;
-      p0 = ((2.0 * j + 1.0) * z * p1 - j * p2) / (j + 1.0);
-    }
-    const double dp = n * (z * p0 - p1) / (z * z - 1.0);
+    const double dp = legendre(n, z).second;
     x[i] = 0.5 * (1.0 - z);
     w[i] = 1.0 / ((1.0 - z * z) * dp * dp);
   }

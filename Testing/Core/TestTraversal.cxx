@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Exact voxel traversal: lengths against ray-box chords computed directly.
 #include "TestScenes.h"
+#include "volrad/Transmittance.h"
 #include "volrad/VoxelTraversal.h"
 
 #include <gtest/gtest.h>
@@ -83,4 +84,35 @@ TEST(Traversal, MissingRayVisitsNothing)
     traverseVoxels(g, Vec3(5, 5, 5), Vec3(1, 0, 0), 1e9, [&](Index, double, double) { return ++visits > 0; });
   EXPECT_FALSE(exit.exited);
   EXPECT_EQ(visits, 0);
+}
+
+TEST(Transmittance, HomogeneousAndLayeredMediaMatchBeersLaw)
+{
+  Scene s = test::cubeScene(10);
+  for (Index v = 0; v < s.grid.voxelCount(); ++v)
+  {
+    // Two layers: kappa = 2 below z = 0.5, 7 above.
+    s.kappaA[v] = s.grid.voxelCentre(v)[2] < 0.5 ? 1.5f : 5.0f;
+    s.sigmaI[v] = s.grid.voxelCentre(v)[2] < 0.5 ? 0.5f : 2.0f;
+  }
+  Rng rng(7);
+  for (int r = 0; r < 200; ++r)
+  {
+    // Segments from anywhere (also outside the cube) to anywhere.
+    const Vec3 a(rng.uniform() * 1.6 - 0.3, rng.uniform() * 1.6 - 0.3, rng.uniform() * 1.6 - 0.3);
+    const Vec3 b(rng.uniform() * 1.6 - 0.3, rng.uniform() * 1.6 - 0.3, rng.uniform() * 1.6 - 0.3);
+    // Reference: clip to the cube, split at z = 0.5, lengths times kappa.
+    double expected = 0.0;
+    const int steps = 200000;
+    for (int i = 0; i < steps; ++i)
+    {
+      const Vec3 x = a + (b - a) * ((i + 0.5) / steps);
+      if ((x.array() >= 0.0).all() && (x.array() <= 1.0).all())
+      {
+        expected += (x[2] < 0.5 ? 2.0 : 7.0) * (b - a).norm() / steps;
+      }
+    }
+    EXPECT_NEAR(opticalDepth(s, 0, a, b), expected, 1e-4 * (1.0 + expected));
+  }
+  EXPECT_NEAR(transmittance(s, 0, Vec3(0.5, 0.5, 0.0), Vec3(0.5, 0.5, 1.0)), std::exp(-(2.0 * 0.5 + 7.0 * 0.5)), 1e-12);
 }

@@ -11,6 +11,19 @@ using namespace volrad::test;
 
 namespace {
 
+/// Emission E in every voxel of a medium with the given absorption and scattering.
+template <class FA, class FS>
+void emittingMedium(Scene& s, double E, FA kappaA, FS sigmaI)
+{
+  for (Index v = 0; v < s.grid.voxelCount(); ++v)
+  {
+    const Vec3 x = s.grid.voxelCentre(v);
+    s.kappaA[v] = float(kappaA(x));
+    s.sigmaI[v] = float(sigmaI(x));
+    s.emissionI[v] = float(E);
+  }
+}
+
 double maxRelativeError(const std::vector<double>& a, double expected)
 {
   double worst = 0.0;
@@ -21,49 +34,42 @@ double maxRelativeError(const std::vector<double>& a, double expected)
   return worst;
 }
 
+/// Solves s and checks G = 4E and that `field` (Q_I or H) equals E.
+void expectFurnace(const char* name, const Scene& s, double E, std::vector<double> Solution::*field)
+{
+  const Solution sol = solveDense(s);
+  const double errG = maxRelativeError(sol.G, 4.0 * E);
+  const double errField = maxRelativeError(sol.*field, E);
+  std::printf("[measured] %s: max |G/4E - 1| = %.3g, max |field/E - 1| = %.3g\n", name, errG, errField);
+  EXPECT_LT(errG, 1e-3);
+  EXPECT_LT(errField, 1e-3);
+}
+
 } // namespace
 
 TEST(WhiteFurnace, EmittingAbsorbingScatteringMediumInOpenSpace)
 {
   Scene s = cubeScene(10);
   const double E = 2.5;
-  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.05, 30.0); });
-  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.0, 20.0, 1.3); });
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
-    s.emissionI[v] = float(E);
-  }
+  emittingMedium(
+    s, E, [](const Vec3& x) { return lumpy(x, 0.05, 30.0); }, [](const Vec3& x) { return lumpy(x, 0.0, 20.0, 1.3); });
   BoundaryCondition open;
   open.radiance = uniformChannels(E / kPi);
   setAllFaces(s, open);
-  const Solution sol = solveDense(s);
-  const double errG = maxRelativeError(sol.G, 4.0 * E);
-  const double errQ = maxRelativeError(sol.QI, E);
-  std::printf("[measured] furnace 10^3: max |G/4E - 1| = %.3g, max |Q_I/E - 1| = %.3g\n", errG, errQ);
-  EXPECT_LT(errG, 1e-3);
-  EXPECT_LT(errQ, 1e-3);
+  expectFurnace("furnace 10^3, open faces (field Q_I)", s, E, &Solution::QI);
 }
 
 TEST(WhiteFurnace, BlackEmittingWallsGiveTheSameAnswer)
 {
   Scene s = cubeScene(8);
   const double E = 1.0;
-  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.5, 12.0, 0.4); });
-  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.0, 8.0, 2.0); });
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
-    s.emissionI[v] = float(E);
-  }
+  emittingMedium(
+    s, E, [](const Vec3& x) { return lumpy(x, 0.5, 12.0, 0.4); }, [](const Vec3& x) { return lumpy(x, 0.0, 8.0, 2.0); });
   BoundaryCondition wall;
   wall.type = BoundaryCondition::Type::Wall;
   wall.emission = uniformChannels(E);
   setAllFaces(s, wall);
-  const Solution sol = solveDense(s);
-  const double errG = maxRelativeError(sol.G, 4.0 * E);
-  const double errH = maxRelativeError(sol.H, E);
-  std::printf("[measured] furnace with black walls 8^3: max |G/4E - 1| = %.3g, max |H/E - 1| = %.3g\n", errG, errH);
-  EXPECT_LT(errG, 1e-3);
-  EXPECT_LT(errH, 1e-3);
+  expectFurnace("furnace 8^3, black emitting walls (field H)", s, E, &Solution::H);
 }
 
 TEST(WhiteFurnace, PureScattering)
