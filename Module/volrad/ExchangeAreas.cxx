@@ -187,7 +187,9 @@ double gatherVacuumVoxel(const ChannelMedium& m, const ExchangeElements& el, Ind
 {
   const Grid& g = m.scene.grid;
   Rng rng(q.seed, std::uint64_t(v));
-  const auto pts = stratifiedPoints(g.voxelLower(v), g.spacing, q.voxelPointsPerAxis, rng);
+  // About as many rays as a voxel with kappa_t > 0 sends, fewer points.
+  const int perAxis = std::max(2, q.voxelPointsPerAxis / 2);
+  const auto pts = stratifiedPoints(g.voxelLower(v), g.spacing, perAxis, rng);
   for (const Vec3& x : pts)
   {
     const Eigen::Matrix3d R = sampleRotation(rng);
@@ -349,7 +351,7 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
   out.S.setZero(n, n);
   out.vacuumGather.setZero(vacuumRows, n);
 
-  const auto vacuumDirs = fibonacciSphere(4 * q.voxelDirections);
+  const auto vacuumDirs = fibonacciSphere(8 * q.voxelDirections);
 
   // One unit of work per voxel, then per patch; blocks keep progress and
   // abort responsive and on the calling thread.
