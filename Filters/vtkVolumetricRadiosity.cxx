@@ -30,9 +30,10 @@ namespace {
 using volrad::Index;
 
 /// Copies a coefficient array (1 or `channels` components, any numeric
-/// type) into the scene's layout; a missing optional array stays zero.
+/// type) into the scene's layout. A missing array means zero
+/// (scene-format.md); when the scene file named it, `missing` gets its name.
 void readCoefficient(vtkImageData* input, const volrad::ArrayBinding& binding, int channels,
-  std::vector<float>& out)
+  std::vector<float>& out, std::string& missing)
 {
   vtkDataArray* a = input->GetPointData()->GetArray(binding.name.c_str());
   if (!a)
@@ -43,7 +44,7 @@ void readCoefficient(vtkImageData* input, const volrad::ArrayBinding& binding, i
     }
     if (binding.required)
     {
-      throw volrad::Error("the input has no point-data array '" + binding.name + "'");
+      missing += (missing.empty() ? "'" : ", '") + binding.name + "'";
     }
     return;
   }
@@ -103,7 +104,7 @@ void readNormals(vtkImageData* input, const volrad::SceneDescription& d, volrad:
   scene.normals = volrad::gradientNormals(scene.grid, values);
 }
 
-volrad::Scene makeScene(vtkImageData* input, const volrad::SceneDescription& d)
+volrad::Scene makeScene(vtkImageData* input, const volrad::SceneDescription& d, std::string& missing)
 {
   volrad::Scene scene;
   int dims[3];
@@ -131,11 +132,11 @@ volrad::Scene makeScene(vtkImageData* input, const volrad::SceneDescription& d)
   }
   d.applyTo(scene);
   scene.allocate();
-  readCoefficient(input, d.arrays.absorption, d.channels, scene.kappaA);
-  readCoefficient(input, d.arrays.scattering, d.channels, scene.sigmaI);
-  readCoefficient(input, d.arrays.surfaceScattering, d.channels, scene.sigmaD);
-  readCoefficient(input, d.arrays.emission, d.channels, scene.emissionI);
-  readCoefficient(input, d.arrays.surfaceEmission, d.channels, scene.emissionD);
+  readCoefficient(input, d.arrays.absorption, d.channels, scene.kappaA, missing);
+  readCoefficient(input, d.arrays.scattering, d.channels, scene.sigmaI, missing);
+  readCoefficient(input, d.arrays.surfaceScattering, d.channels, scene.sigmaD, missing);
+  readCoefficient(input, d.arrays.emission, d.channels, scene.emissionI, missing);
+  readCoefficient(input, d.arrays.surfaceEmission, d.channels, scene.emissionD, missing);
   readNormals(input, d, scene);
   return scene;
 }
@@ -194,6 +195,7 @@ void addStatistics(vtkFieldData* fd, const volrad::Solution& s)
   addField(fd, "SolveSeconds", { s.stats.seconds });
   addField(fd, "FinalUnshot", { s.stats.finalUnshot });
   addField(fd, "QuadratureError", { s.stats.quadratureError });
+  addField(fd, "MemoryEstimateBytes", { double(s.stats.estimatedBytes) });
   vtkNew<vtkStringArray> method;
   method->SetName("SolverMethod");
   method->InsertNextValue(s.stats.method);
@@ -241,7 +243,12 @@ int vtkVolumetricRadiosity::RequestData(
     {
       description = volrad::readSceneDescription(this->SceneFileName);
     }
-    const volrad::Scene scene = makeScene(input, description);
+    std::string missing;
+    const volrad::Scene scene = makeScene(input, description, missing);
+    if (!missing.empty())
+    {
+      vtkWarningMacro("the input has no point-data array " << missing << ": taken as zero");
+    }
     volrad::DenseSolverOptions options;
     options.threads = this->NumberOfThreads;
     options.progress = [this](double f) {

@@ -107,7 +107,21 @@ int main(int argc, char* argv[])
       }
       else if (arg == "--threads")
       {
-        threads = std::stoi(value("--threads"));
+        const std::string v = value("--threads");
+        std::size_t used = 0;
+        long n = -1;
+        try
+        {
+          n = std::stol(v, &used);
+        }
+        catch (const std::exception&)
+        {
+        }
+        if (used != v.size() || n < 0 || n > 4096)
+        {
+          return fail("--threads takes a whole number from 0 to 4096, not '" + v + "'");
+        }
+        threads = int(n);
       }
       else if (!arg.empty() && arg[0] == '-')
       {

@@ -110,6 +110,11 @@ LinearSolveResult solveSystem(const RowMatrix& S, const ChannelSystem& sys, cons
       b[r] = sys.e[i] + sys.c[i] * (sys.D[i] + Sfixed[i]);
       // Jacobi scaling: dividing by 1 - c S_ii solves the self term implicitly.
       const double diag = A(r, r);
+      if (!(diag > 1e-12))
+      {
+        throw Error("the dense solve is singular: an element scatters back all it emits (self term " +
+          std::to_string(1.0 - diag) + ")");
+      }
       A.row(r) /= diag;
       b[r] /= diag;
     }
@@ -123,6 +128,10 @@ LinearSolveResult solveSystem(const RowMatrix& S, const ChannelSystem& sys, cons
     {
       y = A.partialPivLu().solve(b); // robust fallback
     }
+    if (!y.allFinite())
+    {
+      throw Error("the dense linear solve failed (non-finite radiosity): the scene is numerically singular");
+    }
     for (Index r = 0; r < m; ++r)
     {
       out.x[unknown[r]] = y[r];
@@ -135,7 +144,7 @@ LinearSolveResult solveSystem(const RowMatrix& S, const ChannelSystem& sys, cons
 
 struct ChannelSizes
 {
-  Index elements = 0, vacuumRows = 0, unknowns = 0;
+  Index elements = 0, gatherRows = 0, unknowns = 0;
 };
 
 ChannelSizes channelSizes(const Scene& scene, int ch)
@@ -152,16 +161,17 @@ ChannelSizes channelSizes(const Scene& scene, int ch)
   }
   for (Index v = 0; v < g.voxelCount(); ++v)
   {
-    const bool normal = scene.hasNormal(v);
+    const bool front = needsFrontSide(scene, v);
     if (scene.kappaTAt(v, ch) > 0.0)
     {
-      s.elements += normal ? 2 : 1;
-      s.unknowns += (scene.sigmaIAt(v, ch) > 0.0) + (normal && scene.sigmaDAt(v, ch) > 0.0);
+      s.elements += front ? 2 : 1;
+      s.unknowns += (scene.sigmaIAt(v, ch) > 0.0) + (front && scene.sigmaDAt(v, ch) > 0.0);
     }
     else
     {
-      s.vacuumRows += normal ? 2 : 1;
+      s.gatherRows += 1;
     }
+    s.gatherRows += (!front && scene.hasNormal(v)) ? 1 : 0;
   }
   return s;
 }
@@ -187,7 +197,9 @@ double estimateDenseSolverBytes(const Scene& scene)
   {
     const ChannelSizes s = channelSizes(scene, ch);
     const double n = double(s.elements);
-    const double bytes = 8.0 * (n * n + double(s.vacuumRows) * n + double(s.unknowns) * double(s.unknowns));
+    // S, the gather rows, and the system matrix twice (the LU fallback copies it).
+    const double m = double(s.unknowns);
+    const double bytes = 8.0 * (n * n + double(s.gatherRows) * n + 2.0 * m * m);
     peak = std::max(peak, bytes);
   }
   return peak;
@@ -204,7 +216,7 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
     m << "the dense solver would need about " << bytes / (1024.0 * 1024.0) << " MiB for "
       << scene.grid.voxelCount() << " voxels and " << scene.grid.patchCount()
       << " boundary patches, above its limit of " << options.memoryLimitBytes / (1024.0 * 1024.0)
-      << " MiB; use the hierarchical solver for grids this large";
+      << " MiB; grids this large need the hierarchical solver, which this version does not have yet";
     throw Error(m.str());
   }
   const Grid& g = scene.grid;
@@ -267,16 +279,16 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
       }
       else
       {
-        sol.G[o] = ex->vacuumGather.row(ex->vacuumFullRow[v]).dot(x) + dl.track[v] / V;
+        sol.G[o] = ex->gatherRows.row(ex->gatherFullRow[v]).dot(x) + dl.track[v] / V;
       }
       if (el.front[v] >= 0)
       {
         sol.Gplus[o] = collided[el.front[v]] / (kt * V);
         sol.QD[o] = x[el.front[v]];
       }
-      else if (ex->vacuumFrontRow[v] >= 0)
+      else if (ex->gatherFrontRow[v] >= 0)
       {
-        sol.Gplus[o] = ex->vacuumGather.row(ex->vacuumFrontRow[v]).dot(x) + dl.trackFront[v] / V;
+        sol.Gplus[o] = ex->gatherRows.row(ex->gatherFrontRow[v]).dot(x) + dl.trackFront[v] / V;
       }
       sol.absorbed[o] = scene.kappaAAt(v, ch) * sol.G[o] + scene.sigmaDAt(v, ch) * (sol.G[o] - sol.Gplus[o]);
     }

@@ -53,7 +53,8 @@ void followRay(const Scene& scene, const std::vector<double>& kt, const Vec3& x,
     traverseVoxels(scene.grid, x, d, std::numeric_limits<double>::infinity(), [&](Index v, double l, double) {
       const double k = kt[v];
       const double e = std::exp(-k * l);
-      const double lengthWeighted = k > 0.0 ? (1.0 - e) / k : l;
+      // (1 - e^{-k l}) / k, exact also where k l is tiny.
+      const double lengthWeighted = k * l > 1e-300 ? -std::expm1(-k * l) / k : l;
       const double add = w * T * lengthWeighted;
       tally.track[v] += add;
       if (normals)
@@ -79,7 +80,8 @@ void followRay(const Scene& scene, const std::vector<double>& kt, const Vec3& x,
 template <class F>
 void forChunks(const Grid& g, Index count, RayTally& total, F&& f)
 {
-  const Index chunks = std::min<Index>(count, 64);
+  // A fixed number: each chunk holds a full-size tally while it runs.
+  const Index chunks = std::min<Index>(count, 16);
   if (chunks <= 0)
   {
     return;
@@ -104,7 +106,7 @@ void addDirectional(const Scene& scene, const std::vector<double>& kt, const Dir
   const QuadratureSettings& q, RayTally& tally)
 {
   const Grid& g = scene.grid;
-  const Vec3 d = light.direction.normalized();
+  const Vec3 d = light.direction.stableNormalized();
   const double E = light.irradiance[c];
   if (E <= 0.0)
   {

@@ -55,11 +55,13 @@ void depositRayWeighted(const ChannelMedium& m, const ExchangeElements& el, cons
       {
         return true;
       }
-      const double e = std::exp(-k * length);
-      const double p = T * (1.0 - e);
-      T *= e;
+      const double p = T * -std::expm1(-k * length); // exact also where k * length is tiny
+      T *= std::exp(-k * length);
       const Index ef = el.full[v];
-      rowA[ef] += p;
+      if (rowA)
+      {
+        rowA[ef] += p;
+      }
       if (rowB)
       {
         rowB[ef] += p;
@@ -69,7 +71,10 @@ void depositRayWeighted(const ChannelMedium& m, const ExchangeElements& el, cons
       // the emitter lies in front of v, i.e. n_v . d < 0.
       if (er >= 0 && m.normalDot(v, d) < 0.0)
       {
-        rowA[er] += p;
+        if (rowA)
+        {
+          rowA[er] += p;
+        }
         if (rowB)
         {
           rowB[er] += p;
@@ -80,7 +85,10 @@ void depositRayWeighted(const ChannelMedium& m, const ExchangeElements& el, cons
   if (exit.exited)
   {
     const Index e = el.patchElement(exit.patch);
-    rowA[e] += T;
+    if (rowA)
+    {
+      rowA[e] += T;
+    }
     if (rowB)
     {
       rowB[e] += T;
@@ -180,15 +188,16 @@ void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index 
   }
 }
 
-/// Gathers the G weights of a voxel with kappa_t = 0 from stratified
-/// interior points (it emits nothing, so only its view matters).
-double gatherVacuumVoxel(const ChannelMedium& m, const ExchangeElements& el, Index v,
+/// Gathers the G (rowFull) and G+ (rowFront) weights of a voxel that is not
+/// an element from stratified interior points; either row may be null.
+double gatherVoxelView(const ChannelMedium& m, const ExchangeElements& el, Index v,
   const std::vector<Vec3>& dirs, const QuadratureSettings& q, double* rowFull, double* rowFront)
 {
   const Grid& g = m.scene.grid;
   Rng rng(q.seed, std::uint64_t(v));
-  // About as many rays as a voxel with kappa_t > 0 sends, fewer points.
-  const int perAxis = std::max(2, q.voxelPointsPerAxis / 2);
+  // Twice the rays of a voxel with kappa_t > 0: these rows are a direct
+  // quadrature of G or G+, not smoothed by reciprocity.
+  const int perAxis = std::max(2, (2 * q.voxelPointsPerAxis) / 3);
   const auto pts = stratifiedPoints(g.voxelLower(v), g.spacing, perAxis, rng);
   for (const Vec3& x : pts)
   {
@@ -197,7 +206,10 @@ double gatherVacuumVoxel(const ChannelMedium& m, const ExchangeElements& el, Ind
     {
       const Vec3 d = R * d0;
       double* front = (rowFront && m.normalDot(v, d) > 0.0) ? rowFront : nullptr;
-      depositRayWeighted(m, el, x, d, 1.0, rowFull, front);
+      if (rowFull || front)
+      {
+        depositRayWeighted(m, el, x, d, 1.0, rowFull, front);
+      }
     }
   }
   return double(pts.size() * dirs.size());
@@ -284,7 +296,7 @@ ExchangeElements makeExchangeElements(const Scene& scene, int channel)
   el.patchCount = scene.grid.patchCount();
   for (Index v = 0; v < nv; ++v)
   {
-    if (el.full[v] >= 0 && scene.hasNormal(v))
+    if (el.full[v] >= 0 && needsFrontSide(scene, v))
     {
       el.front[v] = el.partitionSize() + el.frontCount++;
     }
@@ -314,9 +326,16 @@ double exchangeRowTarget(const Scene& scene, int channel, const ExchangeElements
   return el.isFront(e) ? 2.0 * kv : 4.0 * kv;
 }
 
-std::size_t exchangeAreasBytes(Index elements, Index vacuumRows)
+bool needsFrontSide(const Scene& scene, Index v)
 {
-  return sizeof(double) * (std::size_t(elements) * std::size_t(elements) + std::size_t(vacuumRows) * elements);
+  for (int c = 0; c < scene.channels; ++c)
+  {
+    if (scene.sigmaDAt(v, c) > 0.0 || scene.emissionDAt(v, c) > 0.0)
+    {
+      return true;
+    }
+  }
+  return false;
 }
 
 ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const QuadratureSettings& q,
@@ -334,24 +353,24 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
   const Index n = el.size();
   const Index nv = g.voxelCount();
 
-  Index vacuumRows = 0;
-  out.vacuumFullRow.assign(nv, -1);
-  out.vacuumFrontRow.assign(nv, -1);
+  Index gatherCount = 0;
+  out.gatherFullRow.assign(nv, -1);
+  out.gatherFrontRow.assign(nv, -1);
   for (Index v = 0; v < nv; ++v)
   {
     if (el.full[v] < 0)
     {
-      out.vacuumFullRow[v] = vacuumRows++;
-      if (scene.hasNormal(v))
-      {
-        out.vacuumFrontRow[v] = vacuumRows++;
-      }
+      out.gatherFullRow[v] = gatherCount++;
+    }
+    if (el.front[v] < 0 && scene.hasNormal(v))
+    {
+      out.gatherFrontRow[v] = gatherCount++;
     }
   }
   out.S.setZero(n, n);
-  out.vacuumGather.setZero(vacuumRows, n);
+  out.gatherRows.setZero(gatherCount, n);
 
-  const auto vacuumDirs = fibonacciSphere(8 * q.voxelDirections);
+  const auto viewDirs = fibonacciSphere(8 * q.voxelDirections);
 
   // One unit of work per voxel, then per patch; blocks keep progress and
   // abort responsive and on the calling thread.
@@ -371,18 +390,23 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
           {
             double* rowFront = el.front[v] >= 0 ? out.S.row(el.front[v]).data() : nullptr;
             gatherVoxelLines(medium, el, v, q, out.S.row(el.full[v]).data(), rowFront);
-            continue;
           }
-          double* rowFull = out.vacuumGather.row(out.vacuumFullRow[v]).data();
-          double* rowFront =
-            out.vacuumFrontRow[v] >= 0 ? out.vacuumGather.row(out.vacuumFrontRow[v]).data() : nullptr;
-          const double scale = 4.0 / gatherVacuumVoxel(medium, el, v, vacuumDirs, q, rowFull, rowFront);
-          for (Index e = 0; e < n; ++e)
+          double* rowFull = out.gatherFullRow[v] >= 0 ? out.gatherRows.row(out.gatherFullRow[v]).data() : nullptr;
+          double* rowFront = out.gatherFrontRow[v] >= 0 ? out.gatherRows.row(out.gatherFrontRow[v]).data() : nullptr;
+          if (rowFull || rowFront)
           {
-            rowFull[e] *= scale; // G weights: 4 pi sr / pi per unit radiosity
-            if (rowFront)
+            const double scale = 4.0 / gatherVoxelView(medium, el, v, viewDirs, q, rowFull, rowFront);
+            for (Index e = 0; e < n; ++e)
             {
-              rowFront[e] *= scale;
+              // G weights: 4 pi sr / pi per unit radiosity.
+              if (rowFull)
+              {
+                rowFull[e] *= scale;
+              }
+              if (rowFront)
+              {
+                rowFront[e] *= scale;
+              }
             }
           }
         }
@@ -417,15 +441,15 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
     {
       u[e] = el.isPatch(e) ? patchRays / exchangeRowTarget(scene, channel, el, e) : voxelRays / voxelSurface;
     }
-    for (Index i = 0; i < n; ++i)
-    {
+    // Row i owns the pairs (i, j > i): no two tasks touch the same entry.
+    tbb::parallel_for(Index(0), n, [&](Index i) {
       for (Index j = i + 1; j < n; ++j)
       {
         const double s = (u[i] * out.S(i, j) + u[j] * out.S(j, i)) / (u[i] + u[j]);
         out.S(i, j) = s;
         out.S(j, i) = s;
       }
-    }
+    });
   }
   if (options.symmetrize && options.smooth && n > 0)
   {

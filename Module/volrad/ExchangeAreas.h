@@ -6,9 +6,10 @@
 /// Elements ("sides") that exchange power:
 ///  * the full side of each voxel with kappa_t > 0: isotropic emitter of
 ///    power 4 kappa_t V Q_I, receiver of everything that collides in it;
-///  * the front side of each such voxel that has a normal: hemispherical
-///    emitter (2 kappa_t V Q_D, travel directions with n.w > 0) and receiver
-///    of the light arriving from the front (what G+ counts);
+///  * the front side of each such voxel whose sigma_d or E_D is non-zero in
+///    some channel (it has a normal then): hemispherical emitter
+///    (2 kappa_t V Q_D, travel directions with n.w > 0) and receiver of the
+///    light arriving from the front (what G+ counts);
 ///  * every boundary patch (wall or open face): Lambertian emitter A B,
 ///    receiver of what hits it.
 ///
@@ -42,7 +43,7 @@ namespace volrad {
 struct ExchangeElements
 {
   std::vector<Index> full;    ///< voxel -> element, -1 where kappa_t = 0
-  std::vector<Index> front;   ///< voxel -> element, -1 without normal or kappa_t = 0
+  std::vector<Index> front;   ///< voxel -> element, -1 where no front side is needed
   std::vector<Index> voxelOf; ///< element -> voxel (full and front sides), -1 for patches
   Index fullCount = 0, patchCount = 0, frontCount = 0;
 
@@ -67,10 +68,12 @@ struct ExchangeAreas
 {
   ExchangeElements elements;
   RowMatrix S; ///< symmetric exchange areas, size elements.size()^2
-  /// G of voxels with kappa_t = 0 (which exchange nothing): G = row . x over
-  /// the element radiosities. Rows indexed by vacuumFullRow / vacuumFrontRow.
-  RowMatrix vacuumGather;
-  std::vector<Index> vacuumFullRow, vacuumFrontRow; ///< voxel -> row or -1
+  /// Fields of voxels that are not elements, gathered by rays from interior
+  /// points: G of voxels with kappa_t = 0 (they exchange nothing) and G+ of
+  /// voxels with a normal but no front side. G = row . x over the element
+  /// radiosities x. Rows indexed by gatherFullRow / gatherFrontRow.
+  RowMatrix gatherRows;
+  std::vector<Index> gatherFullRow, gatherFrontRow; ///< voxel -> row or -1
   /// Largest relative change the smoothing made to an entry: the size of
   /// the quadrature's conservation error.
   double quadratureError = 0.0;
@@ -79,8 +82,8 @@ struct ExchangeAreas
 /// Row sum over the partition that conservation requires of element e.
 double exchangeRowTarget(const Scene& scene, int channel, const ExchangeElements& el, Index e);
 
-/// Bytes the exchange areas of one channel take.
-std::size_t exchangeAreasBytes(Index elements, Index vacuumRows);
+/// Whether voxel v needs a front side (sigma_d or E_D > 0 in some channel).
+bool needsFrontSide(const Scene& scene, Index v);
 
 ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const QuadratureSettings& q,
   const ExchangeOptions& options, const ProgressRange& progress);

@@ -102,7 +102,7 @@ private:
     }
     for (const auto& l : scene_.directionalLights)
     {
-      const Vec3 d = l.direction.normalized();
+      const Vec3 d = l.direction.stableNormalized();
       for (int fi = 0; fi < kFaceCount; ++fi)
       {
         const double cosIn = d.dot(faceInwardNormal(Face(fi)));

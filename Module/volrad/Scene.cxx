@@ -125,6 +125,15 @@ void Scene::validate() const
     }
     for (int c = 0; c < channels; ++c)
     {
+      const double thickness = kappaTAt(v, c) * grid.spacing.maxCoeff();
+      if (thickness > kMaxVoxelOpticalThickness)
+      {
+        std::ostringstream m;
+        m << "kappa_t * spacing = " << thickness << " at " << voxelName(grid, v) << ", channel " << c
+          << ": above " << kMaxVoxelOpticalThickness << ", the voxel is opaque to machine precision"
+          << " (check the units of the coefficients)";
+        throw Error(m.str());
+      }
       if ((sigmaDAt(v, c) > 0.0 || emissionDAt(v, c) > 0.0) && !hasNormal(v))
       {
         throw Error("sigma_d or E_D > 0 at " + voxelName(grid, v) +
@@ -150,7 +159,7 @@ void Scene::validate() const
   {
     const auto& l = directionalLights[i];
     const std::string what = "directional light " + std::to_string(i);
-    if (!l.direction.allFinite() || l.direction.norm() < 1e-12)
+    if (!l.direction.allFinite() || !(l.direction.stableNorm() > 0.0) || !l.direction.stableNormalized().allFinite())
     {
       throw Error(what + ": direction must be finite and non-zero");
     }

@@ -18,6 +18,9 @@
 namespace volrad {
 
 constexpr int kMaxChannels = 3;
+/// Largest optical thickness of one voxel the solvers accept: beyond it
+/// exp(-kappa_t h) underflows and the voxel is a wall in all but name.
+constexpr double kMaxVoxelOpticalThickness = 1e6;
 /// One value per channel (1 grey, or 3 RGB); entries past `channels` unused.
 using ChannelValues = std::array<double, kMaxChannels>;
 

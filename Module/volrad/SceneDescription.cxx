@@ -184,7 +184,7 @@ void parseLights(const json& j, SceneDescription& d)
       {
         dl.direction = vec3(l["direction"], key + ".direction");
       }
-      if (dl.direction.norm() < 1e-12)
+      if (!(dl.direction.stableNorm() > 0.0))
       {
         fail(key + ".direction", "must not be zero");
       }

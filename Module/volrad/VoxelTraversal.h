@@ -37,7 +37,7 @@ DomainExit traverseVoxels(const Grid& g, const Vec3& o, const Vec3& d, double tM
 {
   DomainExit out;
   double t0 = 0.0, t1 = 0.0;
-  if (!clipToDomain(g, o, d, t0, t1))
+  if (!o.allFinite() || !d.allFinite() || d.squaredNorm() == 0.0 || !clipToDomain(g, o, d, t0, t1))
   {
     return out;
   }

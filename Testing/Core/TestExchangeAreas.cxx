@@ -62,6 +62,7 @@ TEST(ExchangeAreas, SmoothedAreasAreSymmetricAndConserve)
 {
   Scene s = heterogeneousScene(6);
   radialNormals(s);
+  fill(s, s.sigmaD, 0, [](const Vec3& x) { return lumpy(x, 0.1, 3.0, 2.2); });
   const ExchangeAreas ex = computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(noProgress, 0, 1));
   const auto& el = ex.elements;
   EXPECT_EQ(el.frontCount, s.grid.voxelCount());
