@@ -26,8 +26,7 @@ Scene benchScene(int n)
   s.grid.origin = Vec3::Constant(0.5 / n);
   s.allocate();
   s.normals.resize(s.grid.voxelCount());
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     const Vec3 x = s.grid.voxelCentre(v) - Vec3::Constant(0.5);
     const double r = x.norm();
     s.kappaA[v] = float(0.5 + 2.0 * (0.5 + 0.5 * std::sin(9 * x[0]) * std::cos(7 * x[1])));
@@ -47,33 +46,35 @@ Scene benchScene(int n)
 int main(int argc, char* argv[])
 {
   std::vector<int> sizes = { 8, 12, 16 };
-  if (argc > 1)
-  {
+  if (argc > 1) {
     sizes.clear();
-    for (int i = 1; i < argc; ++i)
-    {
+    for (int i = 1; i < argc; ++i) {
       sizes.push_back(std::atoi(argv[i]));
     }
   }
-  std::printf("%6s %9s %10s %12s %10s %12s %12s\n", "grid", "elements", "seconds", "peak MiB", "links", "residual",
-    "quad. err");
-  for (int n : sizes)
-  {
+  std::printf("%6s %9s %10s %12s %10s %12s %12s\n",
+              "grid",
+              "elements",
+              "seconds",
+              "peak MiB",
+              "links",
+              "residual",
+              "quad. err");
+  for (int n : sizes) {
     int pipefd[2];
-    if (pipe(pipefd) != 0)
-    {
+    if (pipe(pipefd) != 0) {
       return 1;
     }
     const pid_t pid = fork();
-    if (pid == 0)
-    {
+    if (pid == 0) {
       close(pipefd[0]);
       const Scene s = benchScene(n);
       const Solution sol = solveDense(s);
-      double buf[4] = { sol.stats.seconds, double(sol.stats.links), sol.energy[0].relativeResidual(),
-        sol.stats.quadratureError };
-      if (write(pipefd[1], buf, sizeof(buf)) != sizeof(buf))
-      {
+      double buf[4] = { sol.stats.seconds,
+                        double(sol.stats.links),
+                        sol.energy[0].relativeResidual(),
+                        sol.stats.quadratureError };
+      if (write(pipefd[1], buf, sizeof(buf)) != sizeof(buf)) {
         _exit(1);
       }
       _exit(0);
@@ -85,14 +86,19 @@ int main(int argc, char* argv[])
     int status = 0;
     struct rusage usage;
     wait4(pid, &status, 0, &usage);
-    if (!got)
-    {
+    if (!got) {
       std::printf("%6d failed\n", n);
       continue;
     }
     const long long elements = (long long)(std::sqrt(2.0 * buf[1]));
-    std::printf("%3d^3 %9lld %10.2f %12.1f %10.3g %12.2g %12.3g\n", n, elements, buf[0], usage.ru_maxrss / 1024.0,
-      buf[1], buf[2], buf[3]);
+    std::printf("%3d^3 %9lld %10.2f %12.1f %10.3g %12.2g %12.3g\n",
+                n,
+                elements,
+                buf[0],
+                usage.ru_maxrss / 1024.0,
+                buf[1],
+                buf[2],
+                buf[3]);
   }
   return 0;
 }

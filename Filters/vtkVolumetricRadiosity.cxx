@@ -32,33 +32,30 @@ using volrad::Index;
 /// Copies a coefficient array (1 or `channels` components, any numeric
 /// type) into the scene's layout. A missing array means zero
 /// (scene-format.md); when the scene file named it, `missing` gets its name.
-void readCoefficient(vtkImageData* input, const volrad::ArrayBinding& binding, int channels,
-  std::vector<float>& out, std::string& missing)
+void readCoefficient(vtkImageData* input,
+                     const volrad::ArrayBinding& binding,
+                     int channels,
+                     std::vector<float>& out,
+                     std::string& missing)
 {
   vtkDataArray* a = input->GetPointData()->GetArray(binding.name.c_str());
-  if (!a)
-  {
-    if (input->GetPointData()->GetAbstractArray(binding.name.c_str()))
-    {
+  if (!a) {
+    if (input->GetPointData()->GetAbstractArray(binding.name.c_str())) {
       throw volrad::Error("point-data array '" + binding.name + "' is not numeric");
     }
-    if (binding.required)
-    {
+    if (binding.required) {
       missing += (missing.empty() ? "'" : ", '") + binding.name + "'";
     }
     return;
   }
   const int nc = a->GetNumberOfComponents();
-  if (nc != 1 && nc != channels)
-  {
+  if (nc != 1 && nc != channels) {
     throw volrad::Error("point-data array '" + binding.name + "' has " + std::to_string(nc) +
-      " components; expected 1 or " + std::to_string(channels) + " (channels)");
+                        " components; expected 1 or " + std::to_string(channels) + " (channels)");
   }
   const Index n = input->GetNumberOfPoints();
-  for (Index v = 0; v < n; ++v)
-  {
-    for (int c = 0; c < channels; ++c)
-    {
+  for (Index v = 0; v < n; ++v) {
+    for (int c = 0; c < channels; ++c) {
       out[std::size_t(v) * channels + c] = static_cast<float>(a->GetComponent(v, nc == 1 ? 0 : c));
     }
   }
@@ -67,64 +64,58 @@ void readCoefficient(vtkImageData* input, const volrad::ArrayBinding& binding, i
 void readNormals(vtkImageData* input, const volrad::SceneDescription& d, volrad::Scene& scene)
 {
   vtkPointData* pd = input->GetPointData();
-  if (vtkDataArray* a = pd->GetArray(d.arrays.normals.name.c_str()))
-  {
-    if (a->GetNumberOfComponents() != 3)
-    {
+  if (vtkDataArray* a = pd->GetArray(d.arrays.normals.name.c_str())) {
+    if (a->GetNumberOfComponents() != 3) {
       throw volrad::Error("normals array '" + d.arrays.normals.name + "' must have 3 components");
     }
     scene.normals.resize(input->GetNumberOfPoints());
-    for (Index v = 0; v < input->GetNumberOfPoints(); ++v)
-    {
+    for (Index v = 0; v < input->GetNumberOfPoints(); ++v) {
       double n[3];
       a->GetTuple(v, n);
       scene.normals[v] = { float(n[0]), float(n[1]), float(n[2]) };
     }
     return;
   }
-  if (d.arrays.normals.required)
-  {
+  if (d.arrays.normals.required) {
     throw volrad::Error("the input has no point-data array '" + d.arrays.normals.name + "'");
   }
   // Default: the normalised negative gradient of the material scalars.
-  vtkDataArray* s = d.material.scalars.empty() ? pd->GetScalars() : pd->GetArray(d.material.scalars.c_str());
-  if (!s)
-  {
-    if (!d.material.scalars.empty())
-    {
-      throw volrad::Error("the input has no point-data array '" + d.material.scalars + "' (material.scalars)");
+  vtkDataArray* s =
+    d.material.scalars.empty() ? pd->GetScalars() : pd->GetArray(d.material.scalars.c_str());
+  if (!s) {
+    if (!d.material.scalars.empty()) {
+      throw volrad::Error("the input has no point-data array '" + d.material.scalars +
+                          "' (material.scalars)");
     }
     return; // no normals: fine unless sigma_d or E_D are used (validate says so)
   }
   std::vector<double> values(input->GetNumberOfPoints());
-  for (Index v = 0; v < input->GetNumberOfPoints(); ++v)
-  {
+  for (Index v = 0; v < input->GetNumberOfPoints(); ++v) {
     values[v] = s->GetComponent(v, 0);
   }
   scene.normals = volrad::gradientNormals(scene.grid, values);
 }
 
-volrad::Scene makeScene(vtkImageData* input, const volrad::SceneDescription& d, std::string& missing)
+volrad::Scene makeScene(vtkImageData* input,
+                        const volrad::SceneDescription& d,
+                        std::string& missing)
 {
   volrad::Scene scene;
   int dims[3];
   input->GetDimensions(dims);
-  if (input->GetNumberOfPoints() < 1 || dims[0] < 1 || dims[1] < 1 || dims[2] < 1)
-  {
+  if (input->GetNumberOfPoints() < 1 || dims[0] < 1 || dims[1] < 1 || dims[2] < 1) {
     throw volrad::Error("the input image is empty");
   }
   double spacing[3], origin[3];
   input->GetSpacing(spacing);
   input->GetOrigin(origin);
   vtkMatrix3x3* dir = input->GetDirectionMatrix();
-  if (dir && !dir->IsIdentity())
-  {
+  if (dir && !dir->IsIdentity()) {
     throw volrad::Error("images with a non-identity direction matrix are not supported yet");
   }
   int extent[6];
   input->GetExtent(extent);
-  for (int a = 0; a < 3; ++a)
-  {
+  for (int a = 0; a < 3; ++a) {
     scene.grid.dims[a] = dims[a];
     scene.grid.spacing[a] = spacing[a];
     // Centre of voxel (0,0,0): the first point of the extent.
@@ -141,14 +132,16 @@ volrad::Scene makeScene(vtkImageData* input, const volrad::SceneDescription& d, 
   return scene;
 }
 
-void addPointArray(vtkImageData* out, const char* name, const std::vector<double>& values, int channels)
+void addPointArray(vtkImageData* out,
+                   const char* name,
+                   const std::vector<double>& values,
+                   int channels)
 {
   vtkNew<vtkFloatArray> a;
   a->SetName(name);
   a->SetNumberOfComponents(channels);
   a->SetNumberOfTuples(vtkIdType(values.size() / channels));
-  for (std::size_t i = 0; i < values.size(); ++i)
-  {
+  for (std::size_t i = 0; i < values.size(); ++i) {
     a->SetValue(vtkIdType(i), static_cast<float>(values[i]));
   }
   out->GetPointData()->AddArray(a);
@@ -160,19 +153,17 @@ void addField(vtkFieldData* fd, const char* name, const std::vector<double>& val
   a->SetName(name);
   a->SetNumberOfComponents(int(values.size()));
   a->SetNumberOfTuples(1);
-  for (std::size_t i = 0; i < values.size(); ++i)
-  {
+  for (std::size_t i = 0; i < values.size(); ++i) {
     a->SetComponent(0, int(i), values[i]);
   }
   fd->AddArray(a);
 }
 
-template <class F>
+template<class F>
 std::vector<double> perChannel(const volrad::Solution& s, F f)
 {
   std::vector<double> v;
-  for (const auto& e : s.energy)
-  {
+  for (const auto& e : s.energy) {
     v.push_back(f(e));
   }
   return v;
@@ -185,11 +176,14 @@ void addStatistics(vtkFieldData* fd, const volrad::Solution& s)
   addField(fd, "EnergyEmittedVoxels", perChannel(s, [](const E& e) { return e.emittedVoxels; }));
   addField(fd, "EnergyEmittedWalls", perChannel(s, [](const E& e) { return e.emittedWalls; }));
   addField(fd, "EnergyEnteringLights", perChannel(s, [](const E& e) { return e.enteringLights; }));
-  addField(fd, "EnergyEnteringEnvironment", perChannel(s, [](const E& e) { return e.enteringEnvironment; }));
+  addField(fd, "EnergyEnteringEnvironment", perChannel(s, [](const E& e) {
+             return e.enteringEnvironment;
+           }));
   addField(fd, "EnergyAbsorbed", perChannel(s, [](const E& e) { return e.absorbedVoxels; }));
   addField(fd, "EnergyAbsorbedWalls", perChannel(s, [](const E& e) { return e.absorbedWalls; }));
   addField(fd, "EnergyEscaped", perChannel(s, [](const E& e) { return e.escaped; }));
-  addField(fd, "EnergyBalanceResidual", perChannel(s, [](const E& e) { return e.relativeResidual(); }));
+  addField(
+    fd, "EnergyBalanceResidual", perChannel(s, [](const E& e) { return e.relativeResidual(); }));
   addField(fd, "Iterations", { double(s.stats.iterations) });
   addField(fd, "Links", { double(s.stats.links) });
   addField(fd, "SolveSeconds", { s.stats.seconds });
@@ -212,41 +206,38 @@ vtkVolumetricRadiosity::~vtkVolumetricRadiosity()
   this->SetSceneJSON(nullptr);
 }
 
-int vtkVolumetricRadiosity::RequestUpdateExtent(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+int vtkVolumetricRadiosity::RequestUpdateExtent(vtkInformation*,
+                                                vtkInformationVector** inputVector,
+                                                vtkInformationVector*)
 {
   // The solve is global: it always needs the whole volume.
   vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(),
-    inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()), 6);
+              inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()),
+              6);
   return 1;
 }
 
-int vtkVolumetricRadiosity::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkVolumetricRadiosity::RequestData(vtkInformation*,
+                                        vtkInformationVector** inputVector,
+                                        vtkInformationVector* outputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!input || !output)
-  {
+  if (!input || !output) {
     vtkErrorMacro("vtkVolumetricRadiosity needs a vtkImageData input");
     return 0;
   }
-  try
-  {
+  try {
     volrad::SceneDescription description;
-    if (this->SceneJSON && *this->SceneJSON)
-    {
+    if (this->SceneJSON && *this->SceneJSON) {
       description = volrad::parseSceneDescription(this->SceneJSON);
-    }
-    else if (this->SceneFileName && *this->SceneFileName)
-    {
+    } else if (this->SceneFileName && *this->SceneFileName) {
       description = volrad::readSceneDescription(this->SceneFileName);
     }
     std::string missing;
     const volrad::Scene scene = makeScene(input, description, missing);
-    if (!missing.empty())
-    {
+    if (!missing.empty()) {
       vtkWarningMacro("the input has no point-data array " << missing << ": taken as zero");
     }
     volrad::DenseSolverOptions options;
@@ -255,9 +246,9 @@ int vtkVolumetricRadiosity::RequestData(
       this->UpdateProgress(f);
       return !this->GetAbortExecute();
     };
-    if (description.solver.method == "hierarchical")
-    {
-      vtkWarningMacro("the hierarchical solver is not available yet; solving with the dense solver");
+    if (description.solver.method == "hierarchical") {
+      vtkWarningMacro(
+        "the hierarchical solver is not available yet; solving with the dense solver");
     }
     const volrad::Solution solution = volrad::solveDense(scene, options);
 
@@ -269,15 +260,11 @@ int vtkVolumetricRadiosity::RequestData(
     addPointArray(output, "FrontIncidentRadiation", solution.Gplus, C);
     addPointArray(output, "AbsorbedPower", solution.absorbed, C);
     addStatistics(output->GetFieldData(), solution);
-  }
-  catch (const volrad::Aborted&)
-  {
+  } catch (const volrad::Aborted&) {
     vtkWarningMacro("the solve was aborted");
     output->Initialize();
     return 1;
-  }
-  catch (const std::exception& e)
-  {
+  } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     output->Initialize();
     return 0;
@@ -288,7 +275,8 @@ int vtkVolumetricRadiosity::RequestData(
 void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "SceneFileName: " << (this->SceneFileName ? this->SceneFileName : "(none)") << "\n";
+  os << indent << "SceneFileName: " << (this->SceneFileName ? this->SceneFileName : "(none)")
+     << "\n";
   os << indent << "SceneJSON: " << (this->SceneJSON ? this->SceneJSON : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -60,13 +60,11 @@ int fail(const std::string& message)
 std::string fieldValue(vtkImageData* image, const char* name)
 {
   vtkDataArray* a = image->GetFieldData()->GetArray(name);
-  if (!a)
-  {
+  if (!a) {
     return "?";
   }
   std::string s;
-  for (int c = 0; c < a->GetNumberOfComponents(); ++c)
-  {
+  for (int c = 0; c < a->GetNumberOfComponents(); ++c) {
     char buf[64];
     std::snprintf(buf, sizeof(buf), "%s%.6g", c ? " " : "", a->GetComponent(0, c));
     s += buf;
@@ -80,78 +78,53 @@ int main(int argc, char* argv[])
 {
   std::string input, scene, output;
   int threads = 0;
-  for (int i = 1; i < argc; ++i)
-  {
+  for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* what) -> std::string {
-      if (i + 1 >= argc)
-      {
+      if (i + 1 >= argc) {
         throw std::runtime_error(std::string(what) + " needs a value");
       }
       return argv[++i];
     };
-    try
-    {
-      if (arg == "-h" || arg == "--help")
-      {
+    try {
+      if (arg == "-h" || arg == "--help") {
         std::cout << kUsage;
         return 0;
-      }
-      else if (arg == "--scene")
-      {
+      } else if (arg == "--scene") {
         scene = value("--scene");
-      }
-      else if (arg == "-o" || arg == "--output")
-      {
+      } else if (arg == "-o" || arg == "--output") {
         output = value("-o");
-      }
-      else if (arg == "--threads")
-      {
+      } else if (arg == "--threads") {
         const std::string v = value("--threads");
         std::size_t used = 0;
         long n = -1;
-        try
-        {
+        try {
           n = std::stol(v, &used);
+        } catch (const std::exception&) {
         }
-        catch (const std::exception&)
-        {
-        }
-        if (used != v.size() || n < 0 || n > 4096)
-        {
+        if (used != v.size() || n < 0 || n > 4096) {
           return fail("--threads takes a whole number from 0 to 4096, not '" + v + "'");
         }
         threads = int(n);
-      }
-      else if (!arg.empty() && arg[0] == '-')
-      {
+      } else if (!arg.empty() && arg[0] == '-') {
         return fail("unknown option '" + arg + "'\n" + kUsage);
-      }
-      else if (input.empty())
-      {
+      } else if (input.empty()) {
         input = arg;
-      }
-      else
-      {
+      } else {
         return fail("more than one input given ('" + input + "', '" + arg + "')");
       }
-    }
-    catch (const std::exception& e)
-    {
+    } catch (const std::exception& e) {
       return fail(e.what());
     }
   }
-  if (input.empty() || output.empty())
-  {
+  if (input.empty() || output.empty()) {
     std::cerr << kUsage;
     return 2;
   }
-  if (!std::ifstream(input))
-  {
+  if (!std::ifstream(input)) {
     return fail("cannot read the input file '" + input + "'");
   }
-  if (input.size() < 4 || input.substr(input.size() - 4) != ".vti")
-  {
+  if (input.size() < 4 || input.substr(input.size() - 4) != ".vti") {
     return fail("'" + input + "': this version reads VTK XML image data (.vti) only");
   }
 
@@ -159,8 +132,7 @@ int main(int argc, char* argv[])
   const std::string partial = output + ".partial";
   {
     std::ofstream probe(partial);
-    if (!probe)
-    {
+    if (!probe) {
       return fail("cannot write '" + output + "'");
     }
   }
@@ -175,23 +147,21 @@ int main(int argc, char* argv[])
   reader->SetFileName(input.c_str());
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->Update();
-  if (!errors.messages.empty() || reader->GetOutput()->GetNumberOfPoints() == 0)
-  {
-    return fail("cannot read '" + input + "' as image data" + (errors.messages.empty() ? "" : ": " + errors.messages));
+  if (!errors.messages.empty() || reader->GetOutput()->GetNumberOfPoints() == 0) {
+    return fail("cannot read '" + input + "' as image data" +
+                (errors.messages.empty() ? "" : ": " + errors.messages));
   }
 
   vtkNew<vtkVolumetricRadiosity> filter;
   filter->SetInputConnection(reader->GetOutputPort());
-  if (!scene.empty())
-  {
+  if (!scene.empty()) {
     filter->SetSceneFileName(scene.c_str());
   }
   filter->SetNumberOfThreads(threads);
   filter->AddObserver(vtkCommand::ErrorEvent, onError);
   filter->Update();
   vtkImageData* result = filter->GetOutput();
-  if (!errors.messages.empty() || !result->GetPointData()->GetArray("IncidentRadiation"))
-  {
+  if (!errors.messages.empty() || !result->GetPointData()->GetArray("IncidentRadiation")) {
     return fail(errors.messages.empty() ? "the solve failed" : errors.messages);
   }
 
@@ -200,22 +170,25 @@ int main(int argc, char* argv[])
   writer->SetFileName(partial.c_str());
   writer->SetInputData(result);
   writer->AddObserver(vtkCommand::ErrorEvent, onError);
-  if (writer->Write() != 1 || !errors.messages.empty())
-  {
+  if (writer->Write() != 1 || !errors.messages.empty()) {
     std::remove(partial.c_str());
-    return fail("cannot write '" + output + "'" + (errors.messages.empty() ? "" : ": " + errors.messages));
+    return fail("cannot write '" + output + "'" +
+                (errors.messages.empty() ? "" : ": " + errors.messages));
   }
-  if (std::rename(partial.c_str(), output.c_str()) != 0)
-  {
+  if (std::rename(partial.c_str(), output.c_str()) != 0) {
     std::remove(partial.c_str());
     return fail("cannot write '" + output + "'");
   }
-  std::cout << "volrad: wrote " << output << "\n"
-            << "  solver " << result->GetFieldData()->GetAbstractArray("SolverMethod")->GetVariantValue(0).ToString()
-            << ", " << fieldValue(result, "SolveSeconds") << " s, " << fieldValue(result, "Links") << " links\n"
-            << "  energy emitted " << fieldValue(result, "EnergyEmitted") << ", absorbed "
-            << fieldValue(result, "EnergyAbsorbed") << ", walls " << fieldValue(result, "EnergyAbsorbedWalls")
-            << ", escaped " << fieldValue(result, "EnergyEscaped") << " (residual "
-            << fieldValue(result, "EnergyBalanceResidual") << ")\n";
+  std::cout
+    << "volrad: wrote " << output << "\n"
+    << "  solver "
+    << result->GetFieldData()->GetAbstractArray("SolverMethod")->GetVariantValue(0).ToString()
+    << ", " << fieldValue(result, "SolveSeconds") << " s, " << fieldValue(result, "Links")
+    << " links\n"
+    << "  energy emitted " << fieldValue(result, "EnergyEmitted") << ", absorbed "
+    << fieldValue(result, "EnergyAbsorbed") << ", walls "
+    << fieldValue(result, "EnergyAbsorbedWalls") << ", escaped "
+    << fieldValue(result, "EnergyEscaped") << " (residual "
+    << fieldValue(result, "EnergyBalanceResidual") << ")\n";
   return 0;
 }

@@ -23,17 +23,18 @@ struct ChannelSystem
   Eigen::VectorXd e, c, D; // x = e + c .* (S x + D)
 };
 
-ChannelSystem buildSystem(const Scene& scene, int ch, const ExchangeElements& el, const DirectLighting& dl)
+ChannelSystem buildSystem(const Scene& scene,
+                          int ch,
+                          const ExchangeElements& el,
+                          const DirectLighting& dl)
 {
   const Grid& g = scene.grid;
   const Index n = el.size();
   const double V = g.voxelVolume();
   ChannelSystem sys{ Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n) };
-  for (Index v = 0; v < g.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < g.voxelCount(); ++v) {
     const Index i = el.full[v];
-    if (i < 0)
-    {
+    if (i < 0) {
       continue;
     }
     const double kt = scene.kappaTAt(v, ch), ka = scene.kappaAAt(v, ch);
@@ -41,26 +42,21 @@ ChannelSystem buildSystem(const Scene& scene, int ch, const ExchangeElements& el
     sys.c[i] = scene.sigmaIAt(v, ch) / (4.0 * kt * kt * V);
     sys.D[i] = kt * dl.track[v];
     const Index f = el.front[v];
-    if (f >= 0)
-    {
+    if (f >= 0) {
       sys.e[f] = ka * scene.emissionDAt(v, ch) / kt;
       sys.c[f] = scene.sigmaDAt(v, ch) / (2.0 * kt * kt * V);
       sys.D[f] = kt * dl.trackFront[v];
     }
   }
-  for (Index p = 0; p < el.patchCount; ++p)
-  {
+  for (Index p = 0; p < el.patchCount; ++p) {
     const Index k = el.patchElement(p);
     const Face face = g.patchLocation(p).face;
     const BoundaryCondition& bc = scene.boundary[static_cast<int>(face)];
     sys.D[k] = dl.patchPower[p];
-    if (bc.type == BoundaryCondition::Type::Wall)
-    {
+    if (bc.type == BoundaryCondition::Type::Wall) {
       sys.e[k] = bc.emission[ch];
       sys.c[k] = bc.reflectance[ch] / g.patchArea(face);
-    }
-    else
-    {
+    } else {
       sys.e[k] = kPi * bc.radiance[ch];
     }
   }
@@ -74,45 +70,41 @@ struct LinearSolveResult
   double residual = 0.0; ///< max |x - (e + c (S x + D))|
 };
 
-LinearSolveResult solveSystem(const RowMatrix& S, const ChannelSystem& sys, const DenseSolverOptions& opt)
+LinearSolveResult solveSystem(const RowMatrix& S,
+                              const ChannelSystem& sys,
+                              const DenseSolverOptions& opt)
 {
   const Index n = S.rows();
   LinearSolveResult out;
   out.x = sys.e;
   std::vector<Index> unknown;
-  for (Index i = 0; i < n; ++i)
-  {
-    if (sys.c[i] > 0.0)
-    {
+  for (Index i = 0; i < n; ++i) {
+    if (sys.c[i] > 0.0) {
       unknown.push_back(i);
     }
   }
   const Index m = Index(unknown.size());
-  if (m > 0)
-  {
+  if (m > 0) {
     // Right-hand side with the fixed radiosities moved over.
     Eigen::VectorXd fixed = sys.e;
-    for (Index i : unknown)
-    {
+    for (Index i : unknown) {
       fixed[i] = 0.0;
     }
     const Eigen::VectorXd Sfixed = S * fixed;
     Eigen::MatrixXd A(m, m);
     Eigen::VectorXd b(m);
-    for (Index r = 0; r < m; ++r)
-    {
+    for (Index r = 0; r < m; ++r) {
       const Index i = unknown[r];
-      for (Index col = 0; col < m; ++col)
-      {
+      for (Index col = 0; col < m; ++col) {
         A(r, col) = -sys.c[i] * S(i, unknown[col]);
       }
       A(r, r) += 1.0;
       b[r] = sys.e[i] + sys.c[i] * (sys.D[i] + Sfixed[i]);
       // Jacobi scaling: dividing by 1 - c S_ii solves the self term implicitly.
       const double diag = A(r, r);
-      if (!(diag > 1e-12))
-      {
-        throw Error("the dense solve is singular: an element scatters back all it emits (self term " +
+      if (!(diag > 1e-12)) {
+        throw Error(
+          "the dense solve is singular: an element scatters back all it emits (self term " +
           std::to_string(1.0 - diag) + ")");
       }
       A.row(r) /= diag;
@@ -124,16 +116,15 @@ LinearSolveResult solveSystem(const RowMatrix& S, const ChannelSystem& sys, cons
     solver.compute(A);
     Eigen::VectorXd y = solver.solve(b);
     out.iterations = solver.iterations();
-    if (solver.info() != Eigen::Success || !y.allFinite() || (A * y - b).norm() > 10 * opt.tolerance * b.norm())
-    {
+    if (solver.info() != Eigen::Success || !y.allFinite() ||
+        (A * y - b).norm() > 10 * opt.tolerance * b.norm()) {
       y = A.partialPivLu().solve(b); // robust fallback
     }
-    if (!y.allFinite())
-    {
-      throw Error("the dense linear solve failed (non-finite radiosity): the scene is numerically singular");
+    if (!y.allFinite()) {
+      throw Error(
+        "the dense linear solve failed (non-finite radiosity): the scene is numerically singular");
     }
-    for (Index r = 0; r < m; ++r)
-    {
+    for (Index r = 0; r < m; ++r) {
       out.x[unknown[r]] = y[r];
     }
   }
@@ -152,23 +143,18 @@ ChannelSizes channelSizes(const Scene& scene, int ch)
   ChannelSizes s;
   const Grid& g = scene.grid;
   s.elements = g.patchCount();
-  for (int f = 0; f < kFaceCount; ++f)
-  {
-    if (scene.boundary[f].type == BoundaryCondition::Type::Wall && scene.boundary[f].reflectance[ch] > 0.0)
-    {
+  for (int f = 0; f < kFaceCount; ++f) {
+    if (scene.boundary[f].type == BoundaryCondition::Type::Wall &&
+        scene.boundary[f].reflectance[ch] > 0.0) {
       s.unknowns += g.facePatchCount(Face(f));
     }
   }
-  for (Index v = 0; v < g.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < g.voxelCount(); ++v) {
     const bool front = needsFrontSide(scene, v);
-    if (scene.kappaTAt(v, ch) > 0.0)
-    {
+    if (scene.kappaTAt(v, ch) > 0.0) {
       s.elements += front ? 2 : 1;
       s.unknowns += (scene.sigmaIAt(v, ch) > 0.0) + (front && scene.sigmaDAt(v, ch) > 0.0);
-    }
-    else
-    {
+    } else {
       s.gatherRows += 1;
     }
     s.gatherRows += (!front && scene.hasNormal(v)) ? 1 : 0;
@@ -178,10 +164,8 @@ ChannelSizes channelSizes(const Scene& scene, int ch)
 
 bool sameExtinction(const Scene& s, int a, int b)
 {
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
-    if (s.kappaTAt(v, a) != s.kappaTAt(v, b))
-    {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    if (s.kappaTAt(v, a) != s.kappaTAt(v, b)) {
       return false;
     }
   }
@@ -193,8 +177,7 @@ bool sameExtinction(const Scene& s, int a, int b)
 double estimateDenseSolverBytes(const Scene& scene)
 {
   double peak = 0.0;
-  for (int ch = 0; ch < scene.channels; ++ch)
-  {
+  for (int ch = 0; ch < scene.channels; ++ch) {
     const ChannelSizes s = channelSizes(scene, ch);
     const double n = double(s.elements);
     // S, the gather rows, and the system matrix twice (the LU fallback copies it).
@@ -210,13 +193,13 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
   const auto start = std::chrono::steady_clock::now();
   scene.validate();
   const double bytes = estimateDenseSolverBytes(scene);
-  if (bytes > options.memoryLimitBytes)
-  {
+  if (bytes > options.memoryLimitBytes) {
     std::ostringstream m;
     m << "the dense solver would need about " << bytes / (1024.0 * 1024.0) << " MiB for "
       << scene.grid.voxelCount() << " voxels and " << scene.grid.patchCount()
       << " boundary patches, above its limit of " << options.memoryLimitBytes / (1024.0 * 1024.0)
-      << " MiB; grids this large need the hierarchical solver, which this version does not have yet";
+      << " MiB; grids this large need the hierarchical solver, which this version does not have "
+         "yet";
     throw Error(m.str());
   }
   const Grid& g = scene.grid;
@@ -224,8 +207,7 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
   const Index nv = g.voxelCount(), np = g.patchCount();
   Solution sol;
   sol.channels = C;
-  for (auto* a : { &sol.G, &sol.Gplus, &sol.QI, &sol.QD, &sol.absorbed })
-  {
+  for (auto* a : { &sol.G, &sol.Gplus, &sol.QI, &sol.QD, &sol.absorbed }) {
     a->assign(std::size_t(nv) * C, 0.0);
   }
   sol.B.assign(std::size_t(np) * C, 0.0);
@@ -240,11 +222,9 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
   std::unique_ptr<ExchangeAreas> ex;
   int exChannel = -1;
   const double V = g.voxelVolume();
-  for (int ch = 0; ch < C; ++ch)
-  {
+  for (int ch = 0; ch < C; ++ch) {
     const ProgressRange chProgress = progress.sub(double(ch) / C, double(ch + 1) / C);
-    if (!ex || !sameExtinction(scene, exChannel, ch))
-    {
+    if (!ex || !sameExtinction(scene, exChannel, ch)) {
       ex.reset();
       arena.execute([&] {
         ex = std::make_unique<ExchangeAreas>(
@@ -268,32 +248,25 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
     const Eigen::VectorXd x = lin.x;
     const Eigen::VectorXd collided = ex->S * x + sys.D;
 
-    for (Index v = 0; v < nv; ++v)
-    {
+    for (Index v = 0; v < nv; ++v) {
       const std::size_t o = std::size_t(v) * C + ch;
       const double kt = scene.kappaTAt(v, ch);
-      if (el.full[v] >= 0)
-      {
+      if (el.full[v] >= 0) {
         sol.G[o] = collided[el.full[v]] / (kt * V);
         sol.QI[o] = x[el.full[v]];
-      }
-      else
-      {
+      } else {
         sol.G[o] = ex->gatherRows.row(ex->gatherFullRow[v]).dot(x) + dl.track[v] / V;
       }
-      if (el.front[v] >= 0)
-      {
+      if (el.front[v] >= 0) {
         sol.Gplus[o] = collided[el.front[v]] / (kt * V);
         sol.QD[o] = x[el.front[v]];
-      }
-      else if (ex->gatherFrontRow[v] >= 0)
-      {
+      } else if (ex->gatherFrontRow[v] >= 0) {
         sol.Gplus[o] = ex->gatherRows.row(ex->gatherFrontRow[v]).dot(x) + dl.trackFront[v] / V;
       }
-      sol.absorbed[o] = scene.kappaAAt(v, ch) * sol.G[o] + scene.sigmaDAt(v, ch) * (sol.G[o] - sol.Gplus[o]);
+      sol.absorbed[o] =
+        scene.kappaAAt(v, ch) * sol.G[o] + scene.sigmaDAt(v, ch) * (sol.G[o] - sol.Gplus[o]);
     }
-    for (Index p = 0; p < np; ++p)
-    {
+    for (Index p = 0; p < np; ++p) {
       const std::size_t o = std::size_t(p) * C + ch;
       sol.B[o] = x[el.patchElement(p)];
       sol.H[o] = collided[el.patchElement(p)] / g.patchArea(g.patchLocation(p).face);
@@ -301,7 +274,8 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
     sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
   }
   progress.report(1.0);
-  sol.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  sol.stats.seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return sol;
 }
 

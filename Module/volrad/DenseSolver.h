@@ -27,7 +27,7 @@ namespace volrad {
 struct DenseSolverOptions
 {
   QuadratureSettings quadrature;
-  double tolerance = 1e-11;  ///< relative residual of the linear solve
+  double tolerance = 1e-11; ///< relative residual of the linear solve
   int maxIterations = 5000;
   /// Default 4 GiB: about 20^3 voxels with normals, 22^3 without.
   double memoryLimitBytes = 4.0 * 1024 * 1024 * 1024;

@@ -30,13 +30,11 @@ struct RayTally
   }
   void add(const RayTally& o)
   {
-    for (std::size_t i = 0; i < track.size(); ++i)
-    {
+    for (std::size_t i = 0; i < track.size(); ++i) {
       track[i] += o.track[i];
       trackFront[i] += o.trackFront[i];
     }
-    for (std::size_t i = 0; i < patchPower.size(); ++i)
-    {
+    for (std::size_t i = 0; i < patchPower.size(); ++i) {
       patchPower[i] += o.patchPower[i];
     }
     entering += o.entering;
@@ -44,32 +42,33 @@ struct RayTally
 };
 
 /// Follows a ray of power w that is inside the domain from parameter 0 on.
-void followRay(const Scene& scene, const std::vector<double>& kt, const Vec3& x, const Vec3& d, double w,
-  RayTally& tally)
+void followRay(const Scene& scene,
+               const std::vector<double>& kt,
+               const Vec3& x,
+               const Vec3& d,
+               double w,
+               RayTally& tally)
 {
   const bool normals = !scene.normals.empty();
   double T = 1.0;
-  const DomainExit exit =
-    traverseVoxels(scene.grid, x, d, std::numeric_limits<double>::infinity(), [&](Index v, double l, double) {
+  const DomainExit exit = traverseVoxels(
+    scene.grid, x, d, std::numeric_limits<double>::infinity(), [&](Index v, double l, double) {
       const double k = kt[v];
       const double e = std::exp(-k * l);
       // (1 - e^{-k l}) / k, exact also where k l is tiny.
       const double lengthWeighted = k * l > 1e-300 ? -std::expm1(-k * l) / k : l;
       const double add = w * T * lengthWeighted;
       tally.track[v] += add;
-      if (normals)
-      {
+      if (normals) {
         const Normal& n = scene.normals[v];
-        if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0.0)
-        {
+        if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0.0) {
           tally.trackFront[v] += add;
         }
       }
       T *= e;
       return T > kNegligibleTransmittance;
     });
-  if (exit.exited)
-  {
+  if (exit.exited) {
     tally.patchPower[exit.patch] += w * T;
   }
 }
@@ -77,13 +76,12 @@ void followRay(const Scene& scene, const std::vector<double>& kt, const Vec3& x,
 /// Runs f(begin, end, tally) over [0, count) in a fixed number of chunks,
 /// in parallel, and merges the chunks' tallies in order: the sums do not
 /// depend on thread scheduling.
-template <class F>
+template<class F>
 void forChunks(const Grid& g, Index count, RayTally& total, F&& f)
 {
   // A fixed number: each chunk holds a full-size tally while it runs.
   const Index chunks = std::min<Index>(count, 16);
-  if (chunks <= 0)
-  {
+  if (chunks <= 0) {
     return;
   }
   std::vector<std::unique_ptr<RayTally>> partial(chunks);
@@ -91,8 +89,7 @@ void forChunks(const Grid& g, Index count, RayTally& total, F&& f)
     partial[ci] = std::make_unique<RayTally>(g);
     f(ci * count / chunks, (ci + 1) * count / chunks, *partial[ci]);
   });
-  for (const auto& p : partial)
-  {
+  for (const auto& p : partial) {
     total.add(*p);
   }
 }
@@ -102,36 +99,34 @@ bool faceIsOpen(const Scene& s, Face f)
   return s.boundary[static_cast<int>(f)].type == BoundaryCondition::Type::Open;
 }
 
-void addDirectional(const Scene& scene, const std::vector<double>& kt, const DirectionalLight& light, int c,
-  const QuadratureSettings& q, RayTally& tally)
+void addDirectional(const Scene& scene,
+                    const std::vector<double>& kt,
+                    const DirectionalLight& light,
+                    int c,
+                    const QuadratureSettings& q,
+                    RayTally& tally)
 {
   const Grid& g = scene.grid;
   const Vec3 d = light.direction.stableNormalized();
   const double E = light.irradiance[c];
-  if (E <= 0.0)
-  {
+  if (E <= 0.0) {
     return;
   }
   const int s = std::max(1, q.lightRaysPerPatchAxis);
-  for (int fi = 0; fi < kFaceCount; ++fi)
-  {
+  for (int fi = 0; fi < kFaceCount; ++fi) {
     const Face f = static_cast<Face>(fi);
     const double cosIn = d.dot(faceInwardNormal(f));
-    if (cosIn <= 0.0 || !faceIsOpen(scene, f))
-    {
+    if (cosIn <= 0.0 || !faceIsOpen(scene, f)) {
       continue; // the light does not enter here, or a wall blocks it
     }
     const auto ax = faceAxesInPlane(f);
     const double w = E * cosIn * g.patchArea(f) / double(s * s);
     const Index first = g.facePatchOffset(f);
     forChunks(g, g.facePatchCount(f), tally, [&](Index begin, Index end, RayTally& local) {
-      for (Index p = first + begin; p < first + end; ++p)
-      {
+      for (Index p = first + begin; p < first + end; ++p) {
         const Vec3 lower = g.patchLower(p);
-        for (int b = 0; b < s; ++b)
-        {
-          for (int a = 0; a < s; ++a)
-          {
+        for (int b = 0; b < s; ++b) {
+          for (int a = 0; a < s; ++a) {
             Vec3 x = lower;
             x[ax[0]] += (a + 0.5) / s * g.spacing[ax[0]];
             x[ax[1]] += (b + 0.5) / s * g.spacing[ax[1]];
@@ -144,13 +139,17 @@ void addDirectional(const Scene& scene, const std::vector<double>& kt, const Dir
   }
 }
 
-void addPoint(const Scene& scene, const std::vector<double>& kt, const PointLight& light, int c,
-  const QuadratureSettings& q, std::size_t lightIndex, RayTally& tally)
+void addPoint(const Scene& scene,
+              const std::vector<double>& kt,
+              const PointLight& light,
+              int c,
+              const QuadratureSettings& q,
+              std::size_t lightIndex,
+              RayTally& tally)
 {
   const Grid& g = scene.grid;
   const double I = light.intensity[c];
-  if (I <= 0.0)
-  {
+  if (I <= 0.0) {
     return;
   }
   const Vec3 lo = g.lower(), hi = g.upper();
@@ -160,27 +159,28 @@ void addPoint(const Scene& scene, const std::vector<double>& kt, const PointLigh
   const double dist = toCentre.norm();
   // Directions: the whole sphere, or the cone around the domain's bounding sphere.
   double cosMax = -1.0;
-  if (dist > radius)
-  {
+  if (dist > radius) {
     cosMax = std::sqrt(1.0 - (radius / dist) * (radius / dist));
   }
   const double solidAngle = 2.0 * kPi * (1.0 - cosMax);
   double farthest = 0.0;
-  for (int corner = 0; corner < 8; ++corner)
-  {
-    const Vec3 x((corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 4) ? hi[2] : lo[2]);
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 x(
+      (corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 4) ? hi[2] : lo[2]);
     farthest = std::max(farthest, (x - light.position).norm());
   }
-  const double voxelSolidAngle = std::pow(g.spacing.minCoeff(), 2) / std::max(farthest * farthest, 1e-300);
+  const double voxelSolidAngle =
+    std::pow(g.spacing.minCoeff(), 2) / std::max(farthest * farthest, 1e-300);
   const double wanted = q.pointLightRaysPerVoxel * solidAngle / voxelSolidAngle;
   const Index rays = Index(std::clamp(wanted, 4096.0, 1.6e7));
   const double w = I * solidAngle / double(rays);
-  const Eigen::Matrix3d frame = dist > 0.0 ? frameAround(toCentre / dist) : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d frame =
+    dist > 0.0 ? frameAround(toCentre / dist) : Eigen::Matrix3d::Identity();
   Rng rotRng(q.seed ^ 0x706f696e74ULL, lightIndex);
-  const Eigen::Matrix3d spin = frame * Eigen::AngleAxisd(2 * kPi * rotRng.uniform(), Vec3::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d spin =
+    frame * Eigen::AngleAxisd(2 * kPi * rotRng.uniform(), Vec3::UnitZ()).toRotationMatrix();
   forChunks(g, rays, tally, [&](Index begin, Index end, RayTally& local) {
-    for (Index i = begin; i < end; ++i)
-    {
+    for (Index i = begin; i < end; ++i) {
       // Equal-solid-angle spiral in the cone.
       const double cosT = 1.0 - (1.0 - cosMax) * (i + 0.5) / double(rays);
       const double sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
@@ -188,12 +188,10 @@ void addPoint(const Scene& scene, const std::vector<double>& kt, const PointLigh
       const Vec3 d = spin * Vec3(sinT * std::cos(phi), sinT * std::sin(phi), cosT);
       double t0, t1;
       Face entry;
-      if (!clipToDomain(g, light.position, d, t0, t1, &entry) || t1 <= std::max(t0, 0.0))
-      {
+      if (!clipToDomain(g, light.position, d, t0, t1, &entry) || t1 <= std::max(t0, 0.0)) {
         continue;
       }
-      if (t0 > 0.0 && !faceIsOpen(scene, entry))
-      {
+      if (t0 > 0.0 && !faceIsOpen(scene, entry)) {
         continue; // blocked by a wall
       }
       followRay(scene, kt, light.position, d, w, local);
@@ -208,17 +206,14 @@ DirectLighting computeDirectLight(const Scene& scene, int channel, const Quadrat
 {
   const Grid& g = scene.grid;
   std::vector<double> kt(std::size_t(g.voxelCount()));
-  for (Index v = 0; v < g.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < g.voxelCount(); ++v) {
     kt[v] = scene.kappaTAt(v, channel);
   }
   RayTally tally(g);
-  for (const auto& l : scene.directionalLights)
-  {
+  for (const auto& l : scene.directionalLights) {
     addDirectional(scene, kt, l, channel, q, tally);
   }
-  for (std::size_t i = 0; i < scene.pointLights.size(); ++i)
-  {
+  for (std::size_t i = 0; i < scene.pointLights.size(); ++i) {
     addPoint(scene, kt, scene.pointLights[i], channel, q, i, tally);
   }
   DirectLighting out;

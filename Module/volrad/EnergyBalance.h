@@ -10,6 +10,9 @@ namespace volrad {
 
 /// Terms of channel `ch` from the solution's G, G+ (voxels) and H (patches);
 /// `lightsEntering` is the direct light power that entered the domain.
-EnergyTerms computeEnergyTerms(const Scene& scene, int ch, const Solution& sol, double lightsEntering);
+EnergyTerms computeEnergyTerms(const Scene& scene,
+                               int ch,
+                               const Solution& sol,
+                               double lightsEntering);
 
 } // namespace volrad

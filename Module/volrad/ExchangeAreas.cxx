@@ -28,8 +28,7 @@ struct ChannelMedium
     : scene(s)
     , kappaT(std::size_t(s.grid.voxelCount()))
   {
-    for (Index v = 0; v < s.grid.voxelCount(); ++v)
-    {
+    for (Index v = 0; v < s.grid.voxelCount(); ++v) {
       kappaT[v] = s.kappaTAt(v, c);
     }
   }
@@ -44,53 +43,54 @@ struct ChannelMedium
 /// its first collision is there (exact for the piecewise-constant medium).
 /// rowB, when given, receives the same deposits (the emitter's front row).
 /// Everything is multiplied by weight.
-void depositRayWeighted(const ChannelMedium& m, const ExchangeElements& el, const Vec3& x, const Vec3& d,
-  double weight, double* rowA, double* rowB)
+void depositRayWeighted(const ChannelMedium& m,
+                        const ExchangeElements& el,
+                        const Vec3& x,
+                        const Vec3& d,
+                        double weight,
+                        double* rowA,
+                        double* rowB)
 {
   double T = weight;
-  const DomainExit exit = traverseVoxels(m.scene.grid, x, d, std::numeric_limits<double>::infinity(),
-    [&](Index v, double length, double) {
-      const double k = m.kappaT[v];
-      if (k <= 0.0)
-      {
-        return true;
-      }
-      const double p = T * -std::expm1(-k * length); // exact also where k * length is tiny
-      T *= std::exp(-k * length);
-      const Index ef = el.full[v];
-      if (rowA)
-      {
-        rowA[ef] += p;
-      }
-      if (rowB)
-      {
-        rowB[ef] += p;
-      }
-      const Index er = el.front[v];
-      // Light travelling along d reaches v's front side from v's front iff
-      // the emitter lies in front of v, i.e. n_v . d < 0.
-      if (er >= 0 && m.normalDot(v, d) < 0.0)
-      {
-        if (rowA)
-        {
-          rowA[er] += p;
-        }
-        if (rowB)
-        {
-          rowB[er] += p;
-        }
-      }
-      return T > kNegligibleTransmittance * weight;
-    });
-  if (exit.exited)
-  {
+  const DomainExit exit =
+    traverseVoxels(m.scene.grid,
+                   x,
+                   d,
+                   std::numeric_limits<double>::infinity(),
+                   [&](Index v, double length, double) {
+                     const double k = m.kappaT[v];
+                     if (k <= 0.0) {
+                       return true;
+                     }
+                     const double p =
+                       T * -std::expm1(-k * length); // exact also where k * length is tiny
+                     T *= std::exp(-k * length);
+                     const Index ef = el.full[v];
+                     if (rowA) {
+                       rowA[ef] += p;
+                     }
+                     if (rowB) {
+                       rowB[ef] += p;
+                     }
+                     const Index er = el.front[v];
+                     // Light travelling along d reaches v's front side from v's front iff
+                     // the emitter lies in front of v, i.e. n_v . d < 0.
+                     if (er >= 0 && m.normalDot(v, d) < 0.0) {
+                       if (rowA) {
+                         rowA[er] += p;
+                       }
+                       if (rowB) {
+                         rowB[er] += p;
+                       }
+                     }
+                     return T > kNegligibleTransmittance * weight;
+                   });
+  if (exit.exited) {
     const Index e = el.patchElement(exit.patch);
-    if (rowA)
-    {
+    if (rowA) {
       rowA[e] += T;
     }
-    if (rowB)
-    {
+    if (rowB) {
       rowB[e] += T;
     }
   }
@@ -101,14 +101,10 @@ void depositRayWeighted(const ChannelMedium& m, const ExchangeElements& el, cons
 double chordBack(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& size)
 {
   double l = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a)
-  {
-    if (d[a] > 0.0)
-    {
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] > 0.0) {
       l = std::min(l, (x[a] - lo[a]) / d[a]);
-    }
-    else if (d[a] < 0.0)
-    {
+    } else if (d[a] < 0.0) {
       l = std::min(l, (x[a] - lo[a] - size[a]) / d[a]);
     }
   }
@@ -122,8 +118,12 @@ double chordBack(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& size)
 /// kappa_t l - (1 - exp(-kappa_t l)), is v's self term. Lines whose
 /// direction leaves through v's front (n_v . d > 0) also go into rowFront.
 /// Returns the total weight (the voxel's surface area).
-void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index v,
-  const QuadratureSettings& q, double* rowFull, double* rowFront)
+void gatherVoxelLines(const ChannelMedium& m,
+                      const ExchangeElements& el,
+                      Index v,
+                      const QuadratureSettings& q,
+                      double* rowFull,
+                      double* rowFront)
 {
   const Grid& g = m.scene.grid;
   const double kt = m.kappaT[v];
@@ -132,14 +132,12 @@ void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index 
   const Vec3 lo = g.voxelLower(v);
   const auto c = g.ijk(v);
   Rng rng(q.seed, std::uint64_t(v));
-  for (int fi = 0; fi < kFaceCount; ++fi)
-  {
+  for (int fi = 0; fi < kFaceCount; ++fi) {
     const Face f = static_cast<Face>(fi);
     const int axis = faceAxis(f);
     const Vec3 outward = -faceInwardNormal(f);
     Vec3 faceLo = lo;
-    if (faceIsMax(f))
-    {
+    if (faceIsMax(f)) {
       faceLo[axis] += g.spacing[axis];
     }
     Vec3 size = g.spacing;
@@ -150,13 +148,14 @@ void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index 
     std::vector<Vec3> cosDirs;
     // A face on the domain boundary sends its lines straight into a patch.
     const bool boundary = faceIsMax(f) ? c[axis] == g.dims[axis] - 1 : c[axis] == 0;
-    const Index patch = boundary ? el.patchElement(g.patchIndex(f, c[faceAxesInPlane(f)[0]], c[faceAxesInPlane(f)[1]])) : -1;
+    const Index patch =
+      boundary
+        ? el.patchElement(g.patchIndex(f, c[faceAxesInPlane(f)[0]], c[faceAxesInPlane(f)[1]]))
+        : -1;
     const Eigen::Matrix3d frame = frameAround(outward);
-    for (const Vec3& x : pts)
-    {
+    for (const Vec3& x : pts) {
       fibonacciCosineHemisphere(q.voxelDirections, rng.uniform(), rng.uniform(), cosDirs);
-      for (const Vec3& d0 : cosDirs)
-      {
+      for (const Vec3& d0 : cosDirs) {
         const Vec3 d = frame * d0;
         const double l = chordBack(x, d, lo, g.spacing);
         const double escape = -std::expm1(-kt * l);
@@ -164,19 +163,15 @@ void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index 
         const bool front = rowFront && m.normalDot(v, d) > 0.0;
         // Self terms: emitted along this line and collided in v itself.
         rowFull[self] += w * selfCollided;
-        if (selfFront >= 0 && m.normalDot(v, d) < 0.0)
-        {
+        if (selfFront >= 0 && m.normalDot(v, d) < 0.0) {
           rowFull[selfFront] += w * selfCollided;
         }
-        if (front)
-        {
+        if (front) {
           rowFront[self] += w * selfCollided;
         }
-        if (boundary)
-        {
+        if (boundary) {
           rowFull[patch] += w * escape;
-          if (front)
-          {
+          if (front) {
             rowFront[patch] += w * escape;
           }
           continue;
@@ -190,8 +185,13 @@ void gatherVoxelLines(const ChannelMedium& m, const ExchangeElements& el, Index 
 
 /// Gathers the G (rowFull) and G+ (rowFront) weights of a voxel that is not
 /// an element from stratified interior points; either row may be null.
-double gatherVoxelView(const ChannelMedium& m, const ExchangeElements& el, Index v,
-  const std::vector<Vec3>& dirs, const QuadratureSettings& q, double* rowFull, double* rowFront)
+double gatherVoxelView(const ChannelMedium& m,
+                       const ExchangeElements& el,
+                       Index v,
+                       const std::vector<Vec3>& dirs,
+                       const QuadratureSettings& q,
+                       double* rowFull,
+                       double* rowFront)
 {
   const Grid& g = m.scene.grid;
   Rng rng(q.seed, std::uint64_t(v));
@@ -199,15 +199,12 @@ double gatherVoxelView(const ChannelMedium& m, const ExchangeElements& el, Index
   // quadrature of G or G+, not smoothed by reciprocity.
   const int perAxis = std::max(2, (2 * q.voxelPointsPerAxis) / 3);
   const auto pts = stratifiedPoints(g.voxelLower(v), g.spacing, perAxis, rng);
-  for (const Vec3& x : pts)
-  {
+  for (const Vec3& x : pts) {
     const Eigen::Matrix3d R = sampleRotation(rng);
-    for (const Vec3& d0 : dirs)
-    {
+    for (const Vec3& d0 : dirs) {
       const Vec3 d = R * d0;
       double* front = (rowFront && m.normalDot(v, d) > 0.0) ? rowFront : nullptr;
-      if (rowFull || front)
-      {
+      if (rowFull || front) {
         depositRayWeighted(m, el, x, d, 1.0, rowFull, front);
       }
     }
@@ -216,8 +213,11 @@ double gatherVoxelView(const ChannelMedium& m, const ExchangeElements& el, Index
 }
 
 /// Gathers the row of boundary patch p with cosine-weighted directions.
-double gatherPatch(const ChannelMedium& m, const ExchangeElements& el, Index p,
-  const QuadratureSettings& q, double* row)
+double gatherPatch(const ChannelMedium& m,
+                   const ExchangeElements& el,
+                   Index p,
+                   const QuadratureSettings& q,
+                   double* row)
 {
   const Grid& g = m.scene.grid;
   const PatchLocation loc = g.patchLocation(p);
@@ -227,11 +227,9 @@ double gatherPatch(const ChannelMedium& m, const ExchangeElements& el, Index p,
   const auto pts = stratifiedPoints(g.patchLower(p), size, q.patchPointsPerAxis, rng);
   const Eigen::Matrix3d frame = frameAround(faceInwardNormal(loc.face));
   std::vector<Vec3> cosDirs;
-  for (const Vec3& x : pts)
-  {
+  for (const Vec3& x : pts) {
     fibonacciCosineHemisphere(q.patchDirections, rng.uniform(), rng.uniform(), cosDirs);
-    for (const Vec3& d0 : cosDirs)
-    {
+    for (const Vec3& d0 : cosDirs) {
       depositRayWeighted(m, el, x, frame * d0, 1.0, row, nullptr);
     }
   }
@@ -240,8 +238,10 @@ double gatherPatch(const ChannelMedium& m, const ExchangeElements& el, Index p,
 
 /// Conjugate gradients with a Jacobi preconditioner on the SPD smoothing
 /// system M mu = r, M = S_PP + diag(rowSum - diag(S_PP)).
-Eigen::VectorXd solveSmoothing(const RowMatrix& S, Index nP, const Eigen::VectorXd& rowSum,
-  const Eigen::VectorXd& r)
+Eigen::VectorXd solveSmoothing(const RowMatrix& S,
+                               Index nP,
+                               const Eigen::VectorXd& rowSum,
+                               const Eigen::VectorXd& r)
 {
   const auto SPP = S.topLeftCorner(nP, nP);
   const Eigen::VectorXd diagExtra = rowSum - SPP.diagonal();
@@ -249,8 +249,7 @@ Eigen::VectorXd solveSmoothing(const RowMatrix& S, Index nP, const Eigen::Vector
     return SPP * v + diagExtra.cwiseProduct(v);
   };
   Eigen::VectorXd invDiag(nP);
-  for (Index i = 0; i < nP; ++i)
-  {
+  for (Index i = 0; i < nP; ++i) {
     invDiag[i] = rowSum[i] > 0.0 ? 1.0 / rowSum[i] : 0.0;
   }
   Eigen::VectorXd mu = Eigen::VectorXd::Zero(nP);
@@ -259,12 +258,10 @@ Eigen::VectorXd solveSmoothing(const RowMatrix& S, Index nP, const Eigen::Vector
   Eigen::VectorXd p = z;
   double rz = res.dot(z);
   const double r0 = r.norm();
-  for (int it = 0; it < 1000 && res.norm() > 1e-15 * r0 + 1e-300; ++it)
-  {
+  for (int it = 0; it < 1000 && res.norm() > 1e-15 * r0 + 1e-300; ++it) {
     const Eigen::VectorXd Ap = apply(p);
     const double pAp = p.dot(Ap);
-    if (!(pAp > 0.0))
-    {
+    if (!(pAp > 0.0)) {
       break;
     }
     const double alpha = rz / pAp;
@@ -286,30 +283,23 @@ ExchangeElements makeExchangeElements(const Scene& scene, int channel)
   const Index nv = scene.grid.voxelCount();
   el.full.assign(nv, -1);
   el.front.assign(nv, -1);
-  for (Index v = 0; v < nv; ++v)
-  {
-    if (scene.kappaTAt(v, channel) > 0.0)
-    {
+  for (Index v = 0; v < nv; ++v) {
+    if (scene.kappaTAt(v, channel) > 0.0) {
       el.full[v] = el.fullCount++;
     }
   }
   el.patchCount = scene.grid.patchCount();
-  for (Index v = 0; v < nv; ++v)
-  {
-    if (el.full[v] >= 0 && needsFrontSide(scene, v))
-    {
+  for (Index v = 0; v < nv; ++v) {
+    if (el.full[v] >= 0 && needsFrontSide(scene, v)) {
       el.front[v] = el.partitionSize() + el.frontCount++;
     }
   }
   el.voxelOf.assign(el.size(), -1);
-  for (Index v = 0; v < nv; ++v)
-  {
-    if (el.full[v] >= 0)
-    {
+  for (Index v = 0; v < nv; ++v) {
+    if (el.full[v] >= 0) {
       el.voxelOf[el.full[v]] = v;
     }
-    if (el.front[v] >= 0)
-    {
+    if (el.front[v] >= 0) {
       el.voxelOf[el.front[v]] = v;
     }
   }
@@ -318,8 +308,7 @@ ExchangeElements makeExchangeElements(const Scene& scene, int channel)
 
 double exchangeRowTarget(const Scene& scene, int channel, const ExchangeElements& el, Index e)
 {
-  if (el.isPatch(e))
-  {
+  if (el.isPatch(e)) {
     return scene.grid.patchArea(scene.grid.patchLocation(e - el.fullCount).face);
   }
   const double kv = scene.kappaTAt(el.voxelOf[e], channel) * scene.grid.voxelVolume();
@@ -328,21 +317,22 @@ double exchangeRowTarget(const Scene& scene, int channel, const ExchangeElements
 
 bool needsFrontSide(const Scene& scene, Index v)
 {
-  for (int c = 0; c < scene.channels; ++c)
-  {
-    if (scene.sigmaDAt(v, c) > 0.0 || scene.emissionDAt(v, c) > 0.0)
-    {
+  for (int c = 0; c < scene.channels; ++c) {
+    if (scene.sigmaDAt(v, c) > 0.0 || scene.emissionDAt(v, c) > 0.0) {
       return true;
     }
   }
   return false;
 }
 
-ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const QuadratureSettings& q,
-  const ExchangeOptions& options, const ProgressRange& progress)
+ExchangeAreas computeExchangeAreas(const Scene& scene,
+                                   int channel,
+                                   const QuadratureSettings& q,
+                                   const ExchangeOptions& options,
+                                   const ProgressRange& progress)
 {
-  if (q.voxelPointsPerAxis < 1 || q.voxelDirections < 1 || q.patchPointsPerAxis < 1 || q.patchDirections < 1)
-  {
+  if (q.voxelPointsPerAxis < 1 || q.voxelDirections < 1 || q.patchPointsPerAxis < 1 ||
+      q.patchDirections < 1) {
     throw Error("quadrature settings must all be >= 1");
   }
   const Grid& g = scene.grid;
@@ -356,14 +346,11 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
   Index gatherCount = 0;
   out.gatherFullRow.assign(nv, -1);
   out.gatherFrontRow.assign(nv, -1);
-  for (Index v = 0; v < nv; ++v)
-  {
-    if (el.full[v] < 0)
-    {
+  for (Index v = 0; v < nv; ++v) {
+    if (el.full[v] < 0) {
       out.gatherFullRow[v] = gatherCount++;
     }
-    if (el.front[v] < 0 && scene.hasNormal(v))
-    {
+    if (el.front[v] < 0 && scene.hasNormal(v)) {
       out.gatherFrontRow[v] = gatherCount++;
     }
   }
@@ -377,47 +364,39 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
   const Index units = nv + el.patchCount;
   const Index block = std::max<Index>(64, units / 100);
   const ProgressRange gatherProgress = progress.sub(0.0, 0.9);
-  for (Index b0 = 0; b0 < units; b0 += block)
-  {
+  for (Index b0 = 0; b0 < units; b0 += block) {
     const Index b1 = std::min(units, b0 + block);
     tbb::parallel_for(tbb::blocked_range<Index>(b0, b1), [&](const tbb::blocked_range<Index>& r) {
-      for (Index u = r.begin(); u != r.end(); ++u)
-      {
-        if (u < nv)
-        {
+      for (Index u = r.begin(); u != r.end(); ++u) {
+        if (u < nv) {
           const Index v = u;
-          if (el.full[v] >= 0)
-          {
+          if (el.full[v] >= 0) {
             double* rowFront = el.front[v] >= 0 ? out.S.row(el.front[v]).data() : nullptr;
             gatherVoxelLines(medium, el, v, q, out.S.row(el.full[v]).data(), rowFront);
           }
-          double* rowFull = out.gatherFullRow[v] >= 0 ? out.gatherRows.row(out.gatherFullRow[v]).data() : nullptr;
-          double* rowFront = out.gatherFrontRow[v] >= 0 ? out.gatherRows.row(out.gatherFrontRow[v]).data() : nullptr;
-          if (rowFull || rowFront)
-          {
-            const double scale = 4.0 / gatherVoxelView(medium, el, v, viewDirs, q, rowFull, rowFront);
-            for (Index e = 0; e < n; ++e)
-            {
+          double* rowFull =
+            out.gatherFullRow[v] >= 0 ? out.gatherRows.row(out.gatherFullRow[v]).data() : nullptr;
+          double* rowFront =
+            out.gatherFrontRow[v] >= 0 ? out.gatherRows.row(out.gatherFrontRow[v]).data() : nullptr;
+          if (rowFull || rowFront) {
+            const double scale =
+              4.0 / gatherVoxelView(medium, el, v, viewDirs, q, rowFull, rowFront);
+            for (Index e = 0; e < n; ++e) {
               // G weights: 4 pi sr / pi per unit radiosity.
-              if (rowFull)
-              {
+              if (rowFull) {
                 rowFull[e] *= scale;
               }
-              if (rowFront)
-              {
+              if (rowFront) {
                 rowFront[e] *= scale;
               }
             }
           }
-        }
-        else
-        {
+        } else {
           const Index p = u - nv;
           double* row = out.S.row(el.patchElement(p)).data();
           const double rays = gatherPatch(medium, el, p, q, row);
           const double area = g.patchArea(g.patchLocation(p).face);
-          for (Index e = 0; e < n; ++e)
-          {
+          for (Index e = 0; e < n; ++e) {
             row[e] *= area / rays;
           }
         }
@@ -426,8 +405,7 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
     gatherProgress.report(double(b1) / double(units));
   }
 
-  if (options.symmetrize)
-  {
+  if (options.symmetrize) {
     // Each row is a ray estimate whose relative variance for a pair (a, b)
     // falls as the number of a's rays that reach b, which is proportional to
     // a's rays per unit of its emitting surface. Weighting the two
@@ -435,40 +413,35 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
     const Vec3& h = g.spacing;
     const double voxelSurface = 2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]);
     const double voxelRays = 6.0 * q.voxelPointsPerAxis * q.voxelPointsPerAxis * q.voxelDirections;
-    const double patchRays = double(q.patchPointsPerAxis) * q.patchPointsPerAxis * q.patchDirections;
+    const double patchRays =
+      double(q.patchPointsPerAxis) * q.patchPointsPerAxis * q.patchDirections;
     Eigen::VectorXd u(n);
-    for (Index e = 0; e < n; ++e)
-    {
-      u[e] = el.isPatch(e) ? patchRays / exchangeRowTarget(scene, channel, el, e) : voxelRays / voxelSurface;
+    for (Index e = 0; e < n; ++e) {
+      u[e] = el.isPatch(e) ? patchRays / exchangeRowTarget(scene, channel, el, e)
+                           : voxelRays / voxelSurface;
     }
     // Row i owns the pairs (i, j > i): no two tasks touch the same entry.
     tbb::parallel_for(Index(0), n, [&](Index i) {
-      for (Index j = i + 1; j < n; ++j)
-      {
+      for (Index j = i + 1; j < n; ++j) {
         const double s = (u[i] * out.S(i, j) + u[j] * out.S(j, i)) / (u[i] + u[j]);
         out.S(i, j) = s;
         out.S(j, i) = s;
       }
     });
   }
-  if (options.symmetrize && options.smooth && n > 0)
-  {
+  if (options.symmetrize && options.smooth && n > 0) {
     const Index nP = el.partitionSize();
     Eigen::VectorXd rowSum = out.S.topLeftCorner(nP, nP).rowwise().sum();
     Eigen::VectorXd residual(nP);
-    for (Index e = 0; e < nP; ++e)
-    {
+    for (Index e = 0; e < nP; ++e) {
       residual[e] = exchangeRowTarget(scene, channel, el, e) - rowSum[e];
     }
     const Eigen::VectorXd mu = solveSmoothing(out.S, nP, rowSum, residual);
     double maxChange = 0.0;
-    for (Index i = 0; i < nP; ++i)
-    {
-      for (Index j = 0; j < nP; ++j)
-      {
+    for (Index i = 0; i < nP; ++i) {
+      for (Index j = 0; j < nP; ++j) {
         const double rel = (i == j) ? mu[i] : mu[i] + mu[j];
-        if (out.S(i, j) != 0.0)
-        {
+        if (out.S(i, j) != 0.0) {
           maxChange = std::max(maxChange, std::abs(rel));
         }
         out.S(i, j) *= 1.0 + rel;
@@ -476,8 +449,7 @@ ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const Quadra
     }
     // Front sides: their partition row sum is 2 kappa_t V; a uniform scale
     // of the row (and of its mirror column) restores it.
-    for (Index f = nP; f < n; ++f)
-    {
+    for (Index f = nP; f < n; ++f) {
       const double sum = out.S.row(f).head(nP).sum();
       const double target = exchangeRowTarget(scene, channel, el, f);
       const double scale = sum > 0.0 ? target / sum : 1.0;

@@ -85,7 +85,10 @@ double exchangeRowTarget(const Scene& scene, int channel, const ExchangeElements
 /// Whether voxel v needs a front side (sigma_d or E_D > 0 in some channel).
 bool needsFrontSide(const Scene& scene, Index v);
 
-ExchangeAreas computeExchangeAreas(const Scene& scene, int channel, const QuadratureSettings& q,
-  const ExchangeOptions& options, const ProgressRange& progress);
+ExchangeAreas computeExchangeAreas(const Scene& scene,
+                                   int channel,
+                                   const QuadratureSettings& q,
+                                   const ExchangeOptions& options,
+                                   const ProgressRange& progress);
 
 } // namespace volrad

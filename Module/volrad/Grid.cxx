@@ -19,8 +19,7 @@ const char* faceName(Face f)
 Index Grid::facePatchOffset(Face f) const
 {
   Index offset = 0;
-  for (int i = 0; i < static_cast<int>(f); ++i)
-  {
+  for (int i = 0; i < static_cast<int>(f); ++i) {
     offset += facePatchCount(static_cast<Face>(i));
   }
   return offset;
@@ -28,12 +27,10 @@ Index Grid::facePatchOffset(Face f) const
 
 PatchLocation Grid::patchLocation(Index p) const
 {
-  for (int fi = 0; fi < kFaceCount; ++fi)
-  {
+  for (int fi = 0; fi < kFaceCount; ++fi) {
     const Face f = static_cast<Face>(fi);
     const Index n = facePatchCount(f);
-    if (p < n)
-    {
+    if (p < n) {
       const int na = dims[faceAxesInPlane(f)[0]];
       return { f, int(p % na), int(p / na) };
     }
@@ -49,8 +46,7 @@ Vec3 Grid::patchLower(Index p) const
   Vec3 x = lower();
   x[ax[0]] += loc.a * spacing[ax[0]];
   x[ax[1]] += loc.b * spacing[ax[1]];
-  if (faceIsMax(loc.face))
-  {
+  if (faceIsMax(loc.face)) {
     x[faceAxis(loc.face)] = upper()[faceAxis(loc.face)];
   }
   return x;

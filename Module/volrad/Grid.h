@@ -30,9 +30,18 @@ enum class Face : int
 };
 constexpr int kFaceCount = 6;
 
-inline int faceAxis(Face f) { return static_cast<int>(f) / 2; }
-inline bool faceIsMax(Face f) { return static_cast<int>(f) % 2 == 1; }
-inline Face makeFace(int axis, bool isMax) { return static_cast<Face>(2 * axis + (isMax ? 1 : 0)); }
+inline int faceAxis(Face f)
+{
+  return static_cast<int>(f) / 2;
+}
+inline bool faceIsMax(Face f)
+{
+  return static_cast<int>(f) % 2 == 1;
+}
+inline Face makeFace(int axis, bool isMax)
+{
+  return static_cast<Face>(2 * axis + (isMax ? 1 : 0));
+}
 /// Unit normal of a face pointing into the domain.
 Vec3 faceInwardNormal(Face f);
 /// "xmin", "xmax", ... as in the scene file.
@@ -42,7 +51,8 @@ const char* faceName(Face f);
 inline std::array<int, 2> faceAxesInPlane(Face f)
 {
   const int a = faceAxis(f);
-  return a == 0 ? std::array<int, 2>{ 1, 2 } : (a == 1 ? std::array<int, 2>{ 0, 2 } : std::array<int, 2>{ 0, 1 });
+  return a == 0 ? std::array<int, 2>{ 1, 2 }
+                : (a == 1 ? std::array<int, 2>{ 0, 2 } : std::array<int, 2>{ 0, 1 });
 }
 
 struct PatchLocation
@@ -71,8 +81,9 @@ struct Grid
   Vec3 lower() const { return origin - 0.5 * spacing; }
   Vec3 upper() const
   {
-    return origin + Vec3((dims[0] - 0.5) * spacing[0], (dims[1] - 0.5) * spacing[1],
-                      (dims[2] - 0.5) * spacing[2]);
+    return origin + Vec3((dims[0] - 0.5) * spacing[0],
+                         (dims[1] - 0.5) * spacing[1],
+                         (dims[2] - 0.5) * spacing[2]);
   }
   Vec3 voxelLower(Index v) const
   {

@@ -27,8 +27,8 @@ struct Source
     Directional,
     Point
   } kind;
-  Index id = 0;         ///< voxel, patch, face or light
-  double power = 0.0;   ///< [W]
+  Index id = 0;       ///< voxel, patch, face or light
+  double power = 0.0; ///< [W]
   Vec3 direction{ 0, 0, 0 };
   double cosMax = -1.0; ///< point lights: cone of directions that can reach the domain
 };
@@ -49,8 +49,7 @@ public:
   {
     const Index nv = g_.voxelCount();
     kt_.resize(nv);
-    for (Index v = 0; v < nv; ++v)
-    {
+    for (Index v = 0; v < nv; ++v) {
       kt_[v] = s.kappaTAt(v, ch);
     }
     buildSources();
@@ -61,11 +60,9 @@ public:
   /// Traces n photons and adds their track lengths (unnormalised) to G, Gp.
   void trace(long long n, Rng& rng, std::vector<double>& G, std::vector<double>& Gp) const
   {
-    for (long long i = 0; i < n; ++i)
-    {
+    for (long long i = 0; i < n; ++i) {
       Photon ph;
-      if (emit(rng, ph))
-      {
+      if (emit(rng, ph)) {
         walk(ph, rng, G, Gp);
       }
     }
@@ -74,82 +71,85 @@ public:
 private:
   void add(Source s)
   {
-    if (s.power > 0.0)
-    {
+    if (s.power > 0.0) {
       total_ += s.power;
       sources_.push_back(s);
       cdf_.push_back(total_);
     }
   }
 
-  bool open(Face f) const { return scene_.boundary[static_cast<int>(f)].type == BoundaryCondition::Type::Open; }
+  bool open(Face f) const
+  {
+    return scene_.boundary[static_cast<int>(f)].type == BoundaryCondition::Type::Open;
+  }
 
   void buildSources()
   {
     const double V = g_.voxelVolume();
-    for (Index v = 0; v < g_.voxelCount(); ++v)
-    {
+    for (Index v = 0; v < g_.voxelCount(); ++v) {
       const double ka = scene_.kappaAAt(v, ch_);
       add({ Source::Kind::VoxelIsotropic, v, 4.0 * ka * scene_.emissionIAt(v, ch_) * V });
       add({ Source::Kind::VoxelHemispherical, v, 2.0 * ka * scene_.emissionDAt(v, ch_) * V });
     }
-    for (Index p = 0; p < g_.patchCount(); ++p)
-    {
+    for (Index p = 0; p < g_.patchCount(); ++p) {
       const Face f = g_.patchLocation(p).face;
       const BoundaryCondition& bc = scene_.boundary[static_cast<int>(f)];
-      const double exitance = bc.type == BoundaryCondition::Type::Wall ? bc.emission[ch_] : kPi * bc.radiance[ch_];
+      const double exitance =
+        bc.type == BoundaryCondition::Type::Wall ? bc.emission[ch_] : kPi * bc.radiance[ch_];
       add({ Source::Kind::Patch, p, exitance * g_.patchArea(f) });
     }
-    for (const auto& l : scene_.directionalLights)
-    {
+    for (const auto& l : scene_.directionalLights) {
       const Vec3 d = l.direction.stableNormalized();
-      for (int fi = 0; fi < kFaceCount; ++fi)
-      {
+      for (int fi = 0; fi < kFaceCount; ++fi) {
         const double cosIn = d.dot(faceInwardNormal(Face(fi)));
-        if (cosIn > 0.0 && open(Face(fi)))
-        {
-          add({ Source::Kind::Directional, fi, l.irradiance[ch_] * cosIn * g_.faceArea(Face(fi)), d });
+        if (cosIn > 0.0 && open(Face(fi))) {
+          add({ Source::Kind::Directional,
+                fi,
+                l.irradiance[ch_] * cosIn * g_.faceArea(Face(fi)),
+                d });
         }
       }
     }
     const Vec3 lo = g_.lower(), hi = g_.upper();
     const Vec3 centre = 0.5 * (lo + hi);
     const double radius = 0.5 * (hi - lo).norm();
-    for (std::size_t i = 0; i < scene_.pointLights.size(); ++i)
-    {
+    for (std::size_t i = 0; i < scene_.pointLights.size(); ++i) {
       const auto& l = scene_.pointLights[i];
       const Vec3 to = centre - l.position;
       const double dist = to.norm();
-      const double cosMax = dist > radius ? std::sqrt(1.0 - (radius / dist) * (radius / dist)) : -1.0;
+      const double cosMax =
+        dist > radius ? std::sqrt(1.0 - (radius / dist) * (radius / dist)) : -1.0;
       const Vec3 axis = dist > 0.0 ? Vec3(to / dist) : Vec3::UnitZ();
-      add({ Source::Kind::Point, Index(i), l.intensity[ch_] * 2.0 * kPi * (1.0 - cosMax), axis, cosMax });
+      add({ Source::Kind::Point,
+            Index(i),
+            l.intensity[ch_] * 2.0 * kPi * (1.0 - cosMax),
+            axis,
+            cosMax });
     }
   }
 
   bool emit(Rng& rng, Photon& ph) const
   {
-    if (sources_.empty())
-    {
+    if (sources_.empty()) {
       return false;
     }
     const double u = rng.uniform() * total_;
-    const std::size_t k =
-      std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(), sources_.size() - 1);
+    const std::size_t k = std::min<std::size_t>(
+      std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin(), sources_.size() - 1);
     const Source& s = sources_[k];
-    switch (s.kind)
-    {
+    switch (s.kind) {
       case Source::Kind::VoxelIsotropic:
-      case Source::Kind::VoxelHemispherical:
-      {
+      case Source::Kind::VoxelHemispherical: {
         const Vec3 lo = g_.voxelLower(s.id);
-        ph.x = lo + Vec3(rng.uniform() * g_.spacing[0], rng.uniform() * g_.spacing[1], rng.uniform() * g_.spacing[2]);
+        ph.x = lo + Vec3(rng.uniform() * g_.spacing[0],
+                         rng.uniform() * g_.spacing[1],
+                         rng.uniform() * g_.spacing[2]);
         ph.w = s.kind == Source::Kind::VoxelIsotropic
-          ? sampleSphere(rng)
-          : sampleHemisphereUniform(scene_.normalAt(s.id).normalized(), rng);
+                 ? sampleSphere(rng)
+                 : sampleHemisphereUniform(scene_.normalAt(s.id).normalized(), rng);
         return true;
       }
-      case Source::Kind::Patch:
-      {
+      case Source::Kind::Patch: {
         const Face f = g_.patchLocation(s.id).face;
         const auto ax = faceAxesInPlane(f);
         ph.x = g_.patchLower(s.id);
@@ -158,8 +158,7 @@ private:
         ph.w = sampleHemisphereCosine(faceInwardNormal(f), rng);
         return true;
       }
-      case Source::Kind::Directional:
-      {
+      case Source::Kind::Directional: {
         const Face f = Face(s.id);
         const auto ax = faceAxesInPlane(f);
         const Vec3 lo = g_.lower(), hi = g_.upper();
@@ -170,8 +169,7 @@ private:
         ph.w = s.direction;
         return true;
       }
-      case Source::Kind::Point:
-      {
+      case Source::Kind::Point: {
         const double cosT = 1.0 - rng.uniform() * (1.0 - s.cosMax);
         const double sinT = std::sqrt(std::max(0.0, 1.0 - cosT * cosT));
         const double phi = 2.0 * kPi * rng.uniform();
@@ -179,14 +177,11 @@ private:
         ph.x = scene_.pointLights[s.id].position;
         double t0, t1;
         Face entry;
-        if (!clipToDomain(g_, ph.x, ph.w, t0, t1, &entry) || t1 <= std::max(t0, 0.0))
-        {
+        if (!clipToDomain(g_, ph.x, ph.w, t0, t1, &entry) || t1 <= std::max(t0, 0.0)) {
           return false; // misses the domain
         }
-        if (t0 > 0.0)
-        {
-          if (!open(entry))
-          {
+        if (t0 > 0.0) {
+          if (!open(entry)) {
             return false; // blocked by a wall
           }
           ph.x += ph.w * t0;
@@ -200,8 +195,7 @@ private:
   void walk(Photon ph, Rng& rng, std::vector<double>& G, std::vector<double>& Gp) const
   {
     const bool normals = !scene_.normals.empty();
-    for (int event = 0; event < 100000; ++event)
-    {
+    for (int event = 0; event < 100000; ++event) {
       double tau = -std::log(1.0 - rng.uniform());
       bool collided = false;
       Index where = -1;
@@ -209,20 +203,17 @@ private:
       const Vec3 w = ph.w;
       auto tally = [&](Index v, double l) {
         G[v] += l;
-        if (normals)
-        {
+        if (normals) {
           const Normal& n = scene_.normals[v];
-          if (n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0.0)
-          {
+          if (n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0.0) {
             Gp[v] += l;
           }
         }
       };
-      const DomainExit exit = traverseVoxels(g_, ph.x, w, std::numeric_limits<double>::infinity(),
-        [&](Index v, double l, double t0) {
+      const DomainExit exit = traverseVoxels(
+        g_, ph.x, w, std::numeric_limits<double>::infinity(), [&](Index v, double l, double t0) {
           const double k = kt_[v];
-          if (k > 0.0 && k * l >= tau)
-          {
+          if (k > 0.0 && k * l >= tau) {
             const double s = tau / k;
             tally(v, s);
             collided = true;
@@ -234,40 +225,34 @@ private:
           tally(v, l);
           return true;
         });
-      if (collided)
-      {
+      if (collided) {
         ph.x += w * tCollision;
-        if (zonal_)
-        {
-          ph.x = g_.voxelLower(where) +
-            Vec3(rng.uniform() * g_.spacing[0], rng.uniform() * g_.spacing[1], rng.uniform() * g_.spacing[2]);
+        if (zonal_) {
+          ph.x = g_.voxelLower(where) + Vec3(rng.uniform() * g_.spacing[0],
+                                             rng.uniform() * g_.spacing[1],
+                                             rng.uniform() * g_.spacing[2]);
         }
         const double u = rng.uniform() * kt_[where];
         const double ka = scene_.kappaAAt(where, ch_), si = scene_.sigmaIAt(where, ch_);
-        if (u < ka)
-        {
+        if (u < ka) {
           return;
         }
-        if (u < ka + si)
-        {
+        if (u < ka + si) {
           ph.w = sampleSphere(rng);
           continue;
         }
         const Vec3 n = scene_.normalAt(where).normalized();
-        if (n.dot(w) >= 0.0)
-        {
+        if (n.dot(w) >= 0.0) {
           return; // arrived from the back side: absorbed
         }
         ph.w = sampleHemisphereUniform(n, rng);
         continue;
       }
-      if (!exit.exited || open(exit.face))
-      {
+      if (!exit.exited || open(exit.face)) {
         return; // escaped
       }
       const BoundaryCondition& bc = scene_.boundary[static_cast<int>(exit.face)];
-      if (rng.uniform() >= bc.reflectance[ch_])
-      {
+      if (rng.uniform() >= bc.reflectance[ch_]) {
         return; // absorbed by the wall
       }
       ph.x += w * exit.t;
@@ -293,8 +278,7 @@ MonteCarloEstimate estimateMonteCarlo(const Scene& scene, const MonteCarloOption
 {
   const auto start = std::chrono::steady_clock::now();
   scene.validate();
-  if (options.batches < 2 || options.photons < options.batches)
-  {
+  if (options.batches < 2 || options.photons < options.batches) {
     throw Error("Monte Carlo needs at least 2 batches and one photon per batch");
   }
   const Grid& g = scene.grid;
@@ -303,14 +287,12 @@ MonteCarloEstimate estimateMonteCarlo(const Scene& scene, const MonteCarloOption
   const int B = options.batches;
   MonteCarloEstimate out;
   out.channels = C;
-  for (auto* a : { &out.G, &out.GStdErr, &out.Gplus, &out.GplusStdErr })
-  {
+  for (auto* a : { &out.G, &out.GStdErr, &out.Gplus, &out.GplusStdErr }) {
     a->assign(std::size_t(nv) * C, 0.0);
   }
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   const double V = g.voxelVolume();
-  for (int ch = 0; ch < C; ++ch)
-  {
+  for (int ch = 0; ch < C; ++ch) {
     const ChannelTracer tracer(scene, ch, options.zonal);
     std::vector<std::vector<double>> G(B), Gp(B);
     std::vector<long long> counts(B);
@@ -323,14 +305,11 @@ MonteCarloEstimate estimateMonteCarlo(const Scene& scene, const MonteCarloOption
         tracer.trace(counts[b], rng, G[b], Gp[b]);
       });
     });
-    for (Index v = 0; v < nv; ++v)
-    {
-      for (int which = 0; which < 2; ++which)
-      {
+    for (Index v = 0; v < nv; ++v) {
+      for (int which = 0; which < 2; ++which) {
         const auto& acc = which == 0 ? G : Gp;
         double sum = 0.0, sum2 = 0.0;
-        for (int b = 0; b < B; ++b)
-        {
+        for (int b = 0; b < B; ++b) {
           const double est = tracer.totalPower() / double(counts[b]) * acc[b][v] / V;
           sum += est;
           sum2 += est * est;

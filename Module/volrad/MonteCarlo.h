@@ -21,7 +21,7 @@ struct MonteCarloOptions
   long long photons = 1000000; ///< per channel
   int batches = 16;            ///< for the standard errors (>= 2)
   std::uint64_t seed = 1;
-  int threads = 0;             ///< 0: all cores
+  int threads = 0; ///< 0: all cores
   /// false: the transport equation in the piecewise-constant medium (the
   /// exact answer the grid converges to). true: the zonal model the
   /// radiosity solvers discretise, where light scattered in a voxel leaves

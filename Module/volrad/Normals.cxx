@@ -7,23 +7,21 @@
 
 namespace volrad {
 
-std::vector<Normal> gradientNormals(const Grid& g, const std::vector<double>& s, double relativeThreshold)
+std::vector<Normal> gradientNormals(const Grid& g,
+                                    const std::vector<double>& s,
+                                    double relativeThreshold)
 {
   const Index nv = g.voxelCount();
-  if (Index(s.size()) != nv)
-  {
+  if (Index(s.size()) != nv) {
     throw Error("normals: the scalar field has " + std::to_string(s.size()) + " values, expected " +
-      std::to_string(nv));
+                std::to_string(nv));
   }
   std::vector<Vec3> grad(nv, Vec3::Zero());
   double largest = 0.0;
-  for (Index v = 0; v < nv; ++v)
-  {
+  for (Index v = 0; v < nv; ++v) {
     const auto c = g.ijk(v);
-    for (int a = 0; a < 3; ++a)
-    {
-      if (g.dims[a] < 2)
-      {
+    for (int a = 0; a < 3; ++a) {
+      if (g.dims[a] < 2) {
         continue;
       }
       auto c0 = c, c1 = c;
@@ -36,11 +34,9 @@ std::vector<Normal> gradientNormals(const Grid& g, const std::vector<double>& s,
   }
   std::vector<Normal> n(nv, Normal{ 0.f, 0.f, 0.f });
   const double threshold = relativeThreshold * largest;
-  for (Index v = 0; v < nv; ++v)
-  {
+  for (Index v = 0; v < nv; ++v) {
     const double m = grad[v].norm();
-    if (m > threshold && m > 0.0)
-    {
+    if (m > threshold && m > 0.0) {
       const Vec3 d = -grad[v] / m;
       n[v] = Normal{ float(d[0]), float(d[1]), float(d[2]) };
     }

@@ -13,7 +13,8 @@ namespace volrad {
 /// Central differences inside, one-sided at the grid's edges, in world
 /// units. Where |gradient| <= threshold (relative to the largest gradient
 /// magnitude in the field) the normal is zero: no normal there.
-std::vector<Normal> gradientNormals(const Grid& grid, const std::vector<double>& scalars,
-  double relativeThreshold = 1e-6);
+std::vector<Normal> gradientNormals(const Grid& grid,
+                                    const std::vector<double>& scalars,
+                                    double relativeThreshold = 1e-6);
 
 } // namespace volrad

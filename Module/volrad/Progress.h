@@ -26,8 +26,7 @@ public:
   /// Reports `fraction` of this range; throws Aborted when asked to stop.
   void report(double fraction) const
   {
-    if (cb_ && !cb_(begin_ + (end_ - begin_) * fraction))
-    {
+    if (cb_ && !cb_(begin_ + (end_ - begin_) * fraction)) {
       throw Aborted();
     }
   }

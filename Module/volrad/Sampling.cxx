@@ -11,15 +11,17 @@ std::uint64_t splitMix64(std::uint64_t& x)
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
 }
-std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+std::uint64_t rotl(std::uint64_t x, int k)
+{
+  return (x << k) | (x >> (64 - k));
+}
 constexpr double kGoldenRatio = 1.61803398874989484820;
 } // namespace
 
 Rng::Rng(std::uint64_t seed, std::uint64_t stream)
 {
   std::uint64_t x = seed ^ (0xd1b54a32d192ed03ULL * (stream + 1));
-  for (auto& s : s_)
-  {
+  for (auto& s : s_) {
     s = splitMix64(x);
   }
 }
@@ -71,7 +73,8 @@ Vec3 sampleHemisphereCosine(const Vec3& n, Rng& rng)
   const double u = rng.uniform();
   const double r = std::sqrt(u);
   const double phi = 2.0 * kPi * rng.uniform();
-  return frameAround(n) * Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u)));
+  return frameAround(n) *
+         Vec3(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u)));
 }
 
 Eigen::Matrix3d sampleRotation(Rng& rng)
@@ -79,16 +82,17 @@ Eigen::Matrix3d sampleRotation(Rng& rng)
   // Uniform unit quaternion (Shoemake 1992).
   const double u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
-  Eigen::Quaterniond q(b * std::cos(2 * kPi * u3), a * std::sin(2 * kPi * u2), a * std::cos(2 * kPi * u2),
-    b * std::sin(2 * kPi * u3));
+  Eigen::Quaterniond q(b * std::cos(2 * kPi * u3),
+                       a * std::sin(2 * kPi * u2),
+                       a * std::cos(2 * kPi * u2),
+                       b * std::sin(2 * kPi * u3));
   return q.normalized().toRotationMatrix();
 }
 
 std::vector<Vec3> fibonacciSphere(int n)
 {
   std::vector<Vec3> dirs(n);
-  for (int i = 0; i < n; ++i)
-  {
+  for (int i = 0; i < n; ++i) {
     const double z = 1.0 - (2.0 * i + 1.0) / n;
     const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
     const double phi = 2.0 * kPi * std::fmod(i / kGoldenRatio, 1.0);
@@ -100,8 +104,7 @@ std::vector<Vec3> fibonacciSphere(int n)
 void fibonacciCosineHemisphere(int n, double shiftU, double shiftPhi, std::vector<Vec3>& out)
 {
   out.resize(n);
-  for (int i = 0; i < n; ++i)
-  {
+  for (int i = 0; i < n; ++i) {
     const double u = (i + shiftU) / n; // sin^2(theta): equal cos-weighted measure
     const double r = std::sqrt(u);
     const double phi = 2.0 * kPi * std::fmod(i / kGoldenRatio + shiftPhi, 1.0);
@@ -112,22 +115,17 @@ void fibonacciCosineHemisphere(int n, double shiftU, double shiftPhi, std::vecto
 std::vector<Vec3> stratifiedPoints(const Vec3& lower, const Vec3& size, int perAxis, Rng& rng)
 {
   int counts[3];
-  for (int a = 0; a < 3; ++a)
-  {
+  for (int a = 0; a < 3; ++a) {
     counts[a] = size[a] > 0.0 ? perAxis : 1;
   }
   std::vector<Vec3> pts;
   pts.reserve(std::size_t(counts[0]) * counts[1] * counts[2]);
-  for (int k = 0; k < counts[2]; ++k)
-  {
-    for (int j = 0; j < counts[1]; ++j)
-    {
-      for (int i = 0; i < counts[0]; ++i)
-      {
+  for (int k = 0; k < counts[2]; ++k) {
+    for (int j = 0; j < counts[1]; ++j) {
+      for (int i = 0; i < counts[0]; ++i) {
         const int c[3] = { i, j, k };
         Vec3 p;
-        for (int a = 0; a < 3; ++a)
-        {
+        for (int a = 0; a < 3; ++a) {
           p[a] = lower[a] + size[a] * (c[a] + rng.uniform()) / counts[a];
         }
         pts.push_back(p);

@@ -24,7 +24,10 @@ constexpr double kMaxVoxelOpticalThickness = 1e6;
 /// One value per channel (1 grey, or 3 RGB); entries past `channels` unused.
 using ChannelValues = std::array<double, kMaxChannels>;
 
-inline ChannelValues uniformChannels(double v) { return { v, v, v }; }
+inline ChannelValues uniformChannels(double v)
+{
+  return { v, v, v };
+}
 
 struct BoundaryCondition
 {
@@ -41,7 +44,7 @@ struct BoundaryCondition
 
 struct DirectionalLight
 {
-  Vec3 direction{ 0, 0, -1 };                 ///< travel direction of the light
+  Vec3 direction{ 0, 0, -1 };                ///< travel direction of the light
   ChannelValues irradiance{ 1.0, 1.0, 1.0 }; ///< on a plane normal to it [W/m^2]
 };
 
@@ -77,8 +80,7 @@ struct Scene
   double kappaTAt(Index v, int c) const { return kappaAAt(v, c) + sigmaIAt(v, c) + sigmaDAt(v, c); }
   bool hasNormal(Index v) const
   {
-    if (normals.empty())
-    {
+    if (normals.empty()) {
       return false;
     }
     const Normal& n = normals[v];

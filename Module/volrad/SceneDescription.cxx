@@ -23,39 +23,32 @@ using json = nlohmann::json;
 
 void allowOnly(const json& obj, const std::string& where, std::initializer_list<const char*> keys)
 {
-  if (!obj.is_object())
-  {
+  if (!obj.is_object()) {
     fail(where.empty() ? std::string("the top level") : where, "must be an object");
   }
-  for (auto it = obj.begin(); it != obj.end(); ++it)
-  {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
     bool known = false;
-    for (const char* k : keys)
-    {
+    for (const char* k : keys) {
       known = known || it.key() == k;
     }
-    if (!known)
-    {
+    if (!known) {
       std::string allowed;
-      for (const char* k : keys)
-      {
+      for (const char* k : keys) {
         allowed += (allowed.empty() ? "" : ", ") + std::string(k);
       }
       fail("key '" + (where.empty() ? "" : where + ".") + it.key() + "'",
-        "is unknown (allowed here: " + allowed + ")");
+           "is unknown (allowed here: " + allowed + ")");
     }
   }
 }
 
 double number(const json& j, const std::string& key)
 {
-  if (!j.is_number())
-  {
+  if (!j.is_number()) {
     fail(key, "must be a number");
   }
   const double v = j.get<double>();
-  if (!std::isfinite(v))
-  {
+  if (!std::isfinite(v)) {
     fail(key, "must be finite");
   }
   return v;
@@ -63,8 +56,7 @@ double number(const json& j, const std::string& key)
 
 std::string text(const json& j, const std::string& key)
 {
-  if (!j.is_string())
-  {
+  if (!j.is_string()) {
     fail(key, "must be a string");
   }
   return j.get<std::string>();
@@ -72,21 +64,19 @@ std::string text(const json& j, const std::string& key)
 
 ChannelValues channelValues(const json& j, const std::string& key, int channels)
 {
-  if (j.is_number())
-  {
+  if (j.is_number()) {
     return uniformChannels(number(j, key));
   }
-  if (!j.is_array() || int(j.size()) != channels)
-  {
-    fail(key, "must be a number or an array of " + std::to_string(channels) + " numbers (one per channel)");
+  if (!j.is_array() || int(j.size()) != channels) {
+    fail(key,
+         "must be a number or an array of " + std::to_string(channels) +
+           " numbers (one per channel)");
   }
   ChannelValues v{ 0, 0, 0 };
-  for (int c = 0; c < channels; ++c)
-  {
+  for (int c = 0; c < channels; ++c) {
     v[c] = number(j[c], key + "[" + std::to_string(c) + "]");
   }
-  if (channels == 1)
-  {
+  if (channels == 1) {
     v = uniformChannels(v[0]);
   }
   return v;
@@ -94,8 +84,7 @@ ChannelValues channelValues(const json& j, const std::string& key, int channels)
 
 Vec3 vec3(const json& j, const std::string& key)
 {
-  if (!j.is_array() || j.size() != 3)
-  {
+  if (!j.is_array() || j.size() != 3) {
     fail(key, "must be an array of 3 numbers");
   }
   return Vec3(number(j[0], key + "[0]"), number(j[1], key + "[1]"), number(j[2], key + "[2]"));
@@ -106,35 +95,25 @@ BoundaryCondition boundaryCondition(const json& j, const std::string& key, int c
   allowOnly(j, key, { "type", "radiance", "reflectance", "emission" });
   BoundaryCondition bc;
   const std::string type = j.contains("type") ? text(j["type"], key + ".type") : "open";
-  if (type == "open")
-  {
-    if (j.contains("reflectance") || j.contains("emission"))
-    {
+  if (type == "open") {
+    if (j.contains("reflectance") || j.contains("emission")) {
       fail(key, "is open: reflectance and emission belong to walls");
     }
-    if (j.contains("radiance"))
-    {
+    if (j.contains("radiance")) {
       bc.radiance = channelValues(j["radiance"], key + ".radiance", channels);
     }
-  }
-  else if (type == "wall")
-  {
+  } else if (type == "wall") {
     bc.type = BoundaryCondition::Type::Wall;
-    if (j.contains("radiance"))
-    {
+    if (j.contains("radiance")) {
       fail(key, "is a wall: radiance belongs to open faces");
     }
-    if (j.contains("reflectance"))
-    {
+    if (j.contains("reflectance")) {
       bc.reflectance = channelValues(j["reflectance"], key + ".reflectance", channels);
     }
-    if (j.contains("emission"))
-    {
+    if (j.contains("emission")) {
       bc.emission = channelValues(j["emission"], key + ".emission", channels);
     }
-  }
-  else
-  {
+  } else {
     fail(key + ".type", "is '" + type + "', expected 'open' or 'wall'");
   }
   return bc;
@@ -142,19 +121,26 @@ BoundaryCondition boundaryCondition(const json& j, const std::string& key, int c
 
 void parseArrays(const json& j, ArrayNames& a)
 {
-  allowOnly(j, "arrays",
-    { "absorption", "scattering", "surface_scattering", "emission", "surface_emission", "normals" });
+  allowOnly(j,
+            "arrays",
+            { "absorption",
+              "scattering",
+              "surface_scattering",
+              "emission",
+              "surface_emission",
+              "normals" });
   const std::pair<const char*, ArrayBinding*> keys[] = { { "absorption", &a.absorption },
-    { "scattering", &a.scattering }, { "surface_scattering", &a.surfaceScattering },
-    { "emission", &a.emission }, { "surface_emission", &a.surfaceEmission }, { "normals", &a.normals } };
-  for (const auto& [key, binding] : keys)
-  {
-    if (j.contains(key))
-    {
+                                                         { "scattering", &a.scattering },
+                                                         { "surface_scattering",
+                                                           &a.surfaceScattering },
+                                                         { "emission", &a.emission },
+                                                         { "surface_emission", &a.surfaceEmission },
+                                                         { "normals", &a.normals } };
+  for (const auto& [key, binding] : keys) {
+    if (j.contains(key)) {
       binding->name = text(j[key], std::string("arrays.") + key);
       binding->required = true;
-      if (binding->name.empty())
-      {
+      if (binding->name.empty()) {
         fail(std::string("arrays.") + key, "must not be empty");
       }
     }
@@ -163,54 +149,41 @@ void parseArrays(const json& j, ArrayNames& a)
 
 void parseLights(const json& j, SceneDescription& d)
 {
-  if (!j.is_array())
-  {
+  if (!j.is_array()) {
     fail("lights", "must be an array");
   }
-  for (std::size_t i = 0; i < j.size(); ++i)
-  {
+  for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string key = "lights[" + std::to_string(i) + "]";
     const json& l = j[i];
-    if (!l.is_object() || !l.contains("type"))
-    {
+    if (!l.is_object() || !l.contains("type")) {
       fail(key, "must be an object with a 'type'");
     }
     const std::string type = text(l["type"], key + ".type");
-    if (type == "directional")
-    {
+    if (type == "directional") {
       allowOnly(l, key, { "type", "direction", "irradiance" });
       DirectionalLight dl;
-      if (l.contains("direction"))
-      {
+      if (l.contains("direction")) {
         dl.direction = vec3(l["direction"], key + ".direction");
       }
-      if (!(dl.direction.stableNorm() > 0.0))
-      {
+      if (!(dl.direction.stableNorm() > 0.0)) {
         fail(key + ".direction", "must not be zero");
       }
-      if (l.contains("irradiance"))
-      {
+      if (l.contains("irradiance")) {
         dl.irradiance = channelValues(l["irradiance"], key + ".irradiance", d.channels);
       }
       d.directionalLights.push_back(dl);
-    }
-    else if (type == "point")
-    {
+    } else if (type == "point") {
       allowOnly(l, key, { "type", "position", "intensity" });
       PointLight pl;
-      if (!l.contains("position"))
-      {
+      if (!l.contains("position")) {
         fail(key, "needs a 'position'");
       }
       pl.position = vec3(l["position"], key + ".position");
-      if (l.contains("intensity"))
-      {
+      if (l.contains("intensity")) {
         pl.intensity = channelValues(l["intensity"], key + ".intensity", d.channels);
       }
       d.pointLights.push_back(pl);
-    }
-    else
-    {
+    } else {
       fail(key + ".type", "is '" + type + "', expected 'directional' or 'point'");
     }
   }
@@ -219,27 +192,21 @@ void parseLights(const json& j, SceneDescription& d)
 void parseSolver(const json& j, SolverSettings& s)
 {
   allowOnly(j, "solver", { "method", "epsilon", "max_iterations" });
-  if (j.contains("method"))
-  {
+  if (j.contains("method")) {
     s.method = text(j["method"], "solver.method");
-    if (s.method != "hierarchical" && s.method != "dense")
-    {
+    if (s.method != "hierarchical" && s.method != "dense") {
       fail("solver.method", "is '" + s.method + "', expected 'hierarchical' or 'dense'");
     }
   }
-  if (j.contains("epsilon"))
-  {
+  if (j.contains("epsilon")) {
     s.epsilon = number(j["epsilon"], "solver.epsilon");
-    if (s.epsilon <= 0.0)
-    {
+    if (s.epsilon <= 0.0) {
       fail("solver.epsilon", "must be > 0");
     }
   }
-  if (j.contains("max_iterations"))
-  {
+  if (j.contains("max_iterations")) {
     const json& m = j["max_iterations"];
-    if (!m.is_number_integer() || m.get<long long>() < 1)
-    {
+    if (!m.is_number_integer() || m.get<long long>() < 1) {
       fail("solver.max_iterations", "must be an integer >= 1");
     }
     s.maxIterations = m.get<long long>();
@@ -259,71 +226,57 @@ void SceneDescription::applyTo(Scene& scene) const
 SceneDescription parseSceneDescription(const std::string& jsonText)
 {
   json j;
-  try
-  {
+  try {
     j = json::parse(jsonText);
-  }
-  catch (const json::parse_error& e)
-  {
+  } catch (const json::parse_error& e) {
     throw Error(std::string("scene file: malformed JSON: ") + e.what());
   }
   allowOnly(j, "", { "version", "channels", "arrays", "material", "boundary", "lights", "solver" });
   SceneDescription d;
-  if (!j.contains("version"))
-  {
+  if (!j.contains("version")) {
     fail("'version'", "is missing (this reader knows version 1)");
   }
-  if (!j["version"].is_number_integer() || j["version"].get<long long>() != 1)
-  {
+  if (!j["version"].is_number_integer() || j["version"].get<long long>() != 1) {
     fail("version", "must be 1");
   }
-  if (j.contains("channels"))
-  {
+  if (j.contains("channels")) {
     const json& c = j["channels"];
-    if (!c.is_number_integer() || (c.get<long long>() != 1 && c.get<long long>() != 3))
-    {
+    if (!c.is_number_integer() || (c.get<long long>() != 1 && c.get<long long>() != 3)) {
       fail("channels", "must be 1 or 3");
     }
     d.channels = c.get<int>();
   }
-  if (j.contains("arrays"))
-  {
+  if (j.contains("arrays")) {
     parseArrays(j["arrays"], d.arrays);
   }
-  if (j.contains("material"))
-  {
+  if (j.contains("material")) {
     allowOnly(j["material"], "material", { "scalars", "preset" });
-    if (j["material"].contains("scalars"))
-    {
+    if (j["material"].contains("scalars")) {
       d.material.scalars = text(j["material"]["scalars"], "material.scalars");
     }
-    if (j["material"].contains("preset"))
-    {
+    if (j["material"].contains("preset")) {
       fail("material.preset '" + text(j["material"]["preset"], "material.preset") + "'",
-        "is unknown: this version has no material presets; give the coefficients as arrays");
+           "is unknown: this version has no material presets; give the coefficients as arrays");
     }
   }
-  if (j.contains("boundary"))
-  {
+  if (j.contains("boundary")) {
     const json& b = j["boundary"];
     allowOnly(b, "boundary", { "default", "xmin", "xmax", "ymin", "ymax", "zmin", "zmax" });
     BoundaryCondition def;
-    if (b.contains("default"))
-    {
+    if (b.contains("default")) {
       def = boundaryCondition(b["default"], "boundary.default", d.channels);
     }
-    for (int f = 0; f < kFaceCount; ++f)
-    {
+    for (int f = 0; f < kFaceCount; ++f) {
       const char* name = faceName(Face(f));
-      d.boundary[f] = b.contains(name) ? boundaryCondition(b[name], std::string("boundary.") + name, d.channels) : def;
+      d.boundary[f] = b.contains(name)
+                        ? boundaryCondition(b[name], std::string("boundary.") + name, d.channels)
+                        : def;
     }
   }
-  if (j.contains("lights"))
-  {
+  if (j.contains("lights")) {
     parseLights(j["lights"], d);
   }
-  if (j.contains("solver"))
-  {
+  if (j.contains("solver")) {
     parseSolver(j["solver"], d.solver);
   }
   return d;
@@ -332,18 +285,14 @@ SceneDescription parseSceneDescription(const std::string& jsonText)
 SceneDescription readSceneDescription(const std::string& path)
 {
   std::ifstream in(path);
-  if (!in)
-  {
+  if (!in) {
     throw Error("cannot read the scene file '" + path + "'");
   }
   std::ostringstream s;
   s << in.rdbuf();
-  try
-  {
+  try {
     return parseSceneDescription(s.str());
-  }
-  catch (const Error& e)
-  {
+  } catch (const Error& e) {
     throw Error(path + ": " + e.what());
   }
 }

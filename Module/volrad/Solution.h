@@ -24,7 +24,10 @@ struct EnergyTerms
   double absorbedWalls = 0.0;       ///< sum of (1 - rho) H A over wall patches
   double escaped = 0.0;             ///< H A over open patches
 
-  double emitted() const { return emittedVoxels + emittedWalls + enteringLights + enteringEnvironment; }
+  double emitted() const
+  {
+    return emittedVoxels + emittedWalls + enteringLights + enteringEnvironment;
+  }
   double removed() const { return absorbedVoxels + absorbedWalls + escaped; }
   /// |emitted - removed| / emitted (0 for a dark scene).
   double relativeResidual() const;
@@ -32,12 +35,12 @@ struct EnergyTerms
 
 struct SolveStatistics
 {
-  std::string method;        ///< "dense", "hierarchical"
+  std::string method; ///< "dense", "hierarchical"
   bool converged = false;
-  long long iterations = 0;  ///< linear-solver iterations (all channels)
-  long long links = 0;       ///< exchange factors stored (all channels)
+  long long iterations = 0; ///< linear-solver iterations (all channels)
+  long long links = 0;      ///< exchange factors stored (all channels)
   double seconds = 0.0;
-  double finalUnshot = 0.0;  ///< largest remaining change of a radiosity [W/m^2]
+  double finalUnshot = 0.0;     ///< largest remaining change of a radiosity [W/m^2]
   double quadratureError = 0.0; ///< largest relative correction the smoothing made
   std::size_t estimatedBytes = 0;
 };
@@ -47,13 +50,13 @@ struct SolveStatistics
 struct Solution
 {
   int channels = 1;
-  std::vector<double> G;        ///< incident radiation [W/m^2]
-  std::vector<double> Gplus;    ///< from the front half-space (0 where no normal)
-  std::vector<double> QI;       ///< isotropic radiosity [W/m^2]
-  std::vector<double> QD;       ///< diffuse radiosity [W/m^2]
-  std::vector<double> absorbed; ///< absorbed power density [W/length^3]
-  std::vector<double> B;        ///< patch radiosity [W/m^2]
-  std::vector<double> H;        ///< patch irradiance [W/m^2]
+  std::vector<double> G;           ///< incident radiation [W/m^2]
+  std::vector<double> Gplus;       ///< from the front half-space (0 where no normal)
+  std::vector<double> QI;          ///< isotropic radiosity [W/m^2]
+  std::vector<double> QD;          ///< diffuse radiosity [W/m^2]
+  std::vector<double> absorbed;    ///< absorbed power density [W/length^3]
+  std::vector<double> B;           ///< patch radiosity [W/m^2]
+  std::vector<double> H;           ///< patch irradiance [W/m^2]
   std::vector<EnergyTerms> energy; ///< per channel
   SolveStatistics stats;
 };

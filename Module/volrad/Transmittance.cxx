@@ -11,8 +11,7 @@ double opticalDepth(const Scene& scene, int channel, const Vec3& a, const Vec3& 
 {
   const Vec3 ab = b - a;
   const double length = ab.norm();
-  if (length <= 0.0)
-  {
+  if (length <= 0.0) {
     return 0.0;
   }
   double tau = 0.0;

@@ -10,12 +10,9 @@ bool clipToDomain(const Grid& g, const Vec3& o, const Vec3& d, double& t0, doubl
   t0 = -std::numeric_limits<double>::infinity();
   t1 = std::numeric_limits<double>::infinity();
   Face entryFace = Face::XMin;
-  for (int a = 0; a < 3; ++a)
-  {
-    if (d[a] == 0.0)
-    {
-      if (o[a] < lo[a] || o[a] > hi[a])
-      {
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0.0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) {
         return false;
       }
       continue;
@@ -24,19 +21,16 @@ bool clipToDomain(const Grid& g, const Vec3& o, const Vec3& d, double& t0, doubl
     double tb = (hi[a] - o[a]) / d[a];
     // Entering through the min face when travelling in +a.
     Face fa = makeFace(a, d[a] < 0.0);
-    if (ta > tb)
-    {
+    if (ta > tb) {
       std::swap(ta, tb);
     }
-    if (ta > t0)
-    {
+    if (ta > t0) {
       t0 = ta;
       entryFace = fa;
     }
     t1 = std::min(t1, tb);
   }
-  if (entry)
-  {
+  if (entry) {
     *entry = entryFace;
   }
   return t0 <= t1;

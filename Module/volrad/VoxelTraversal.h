@@ -26,24 +26,28 @@ struct DomainExit
 /// Clips the ray o + t d against the domain box. On overlap returns true with
 /// [t0, t1] and the face through which the ray enters (meaningful when t0 > 0
 /// or the origin lies on the boundary).
-bool clipToDomain(const Grid& g, const Vec3& o, const Vec3& d, double& t0, double& t1, Face* entry = nullptr);
+bool clipToDomain(const Grid& g,
+                  const Vec3& o,
+                  const Vec3& d,
+                  double& t0,
+                  double& t1,
+                  Face* entry = nullptr);
 
 /// Walks the voxels along o + t d for t in [max(0, entry), tMax], calling
 /// visit(voxel, length, tStart) for each crossed voxel (zero-length pieces are
 /// skipped). The visitor returns false to stop the walk. d must be unit
 /// length; o may lie outside the domain.
-template <class Visitor>
+template<class Visitor>
 DomainExit traverseVoxels(const Grid& g, const Vec3& o, const Vec3& d, double tMax, Visitor&& visit)
 {
   DomainExit out;
   double t0 = 0.0, t1 = 0.0;
-  if (!o.allFinite() || !d.allFinite() || d.squaredNorm() == 0.0 || !clipToDomain(g, o, d, t0, t1))
-  {
+  if (!o.allFinite() || !d.allFinite() || d.squaredNorm() == 0.0 ||
+      !clipToDomain(g, o, d, t0, t1)) {
     return out;
   }
   double t = std::max(t0, 0.0);
-  if (t1 <= t)
-  {
+  if (t1 <= t) {
     return out;
   }
   const Vec3 lo = g.lower();
@@ -54,25 +58,19 @@ DomainExit traverseVoxels(const Grid& g, const Vec3& o, const Vec3& d, double tM
   int step[3];
   double tNext[3];
   double tDelta[3];
-  for (int a = 0; a < 3; ++a)
-  {
+  for (int a = 0; a < 3; ++a) {
     int i = static_cast<int>(std::floor((probe[a] - lo[a]) / g.spacing[a]));
     i = std::min(std::max(i, 0), g.dims[a] - 1);
     idx[a] = i;
-    if (d[a] > 0.0)
-    {
+    if (d[a] > 0.0) {
       step[a] = 1;
       tNext[a] = (lo[a] + (i + 1) * g.spacing[a] - o[a]) / d[a];
       tDelta[a] = g.spacing[a] / d[a];
-    }
-    else if (d[a] < 0.0)
-    {
+    } else if (d[a] < 0.0) {
       step[a] = -1;
       tNext[a] = (lo[a] + i * g.spacing[a] - o[a]) / d[a];
       tDelta[a] = -g.spacing[a] / d[a];
-    }
-    else
-    {
+    } else {
       step[a] = 0;
       tNext[a] = std::numeric_limits<double>::infinity();
       tDelta[a] = std::numeric_limits<double>::infinity();
@@ -81,22 +79,19 @@ DomainExit traverseVoxels(const Grid& g, const Vec3& o, const Vec3& d, double tM
   const Index sx = 1, sy = g.dims[0], sz = Index(g.dims[0]) * g.dims[1];
   const Index strides[3] = { sx, sy, sz };
   Index voxel = idx[0] + sy * idx[1] + sz * idx[2];
-  for (;;)
-  {
-    const int axis = tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+  for (;;) {
+    const int axis =
+      tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
     const double tEnd = std::min(tNext[axis], tMax);
-    if (tEnd > t && !visit(voxel, tEnd - t, t))
-    {
+    if (tEnd > t && !visit(voxel, tEnd - t, t)) {
       return out;
     }
-    if (tNext[axis] >= tMax)
-    {
+    if (tNext[axis] >= tMax) {
       return out; // stopped inside the domain
     }
     t = tNext[axis];
     idx[axis] += step[axis];
-    if (idx[axis] < 0 || idx[axis] >= g.dims[axis])
-    {
+    if (idx[axis] < 0 || idx[axis] >= g.dims[axis]) {
       out.exited = true;
       out.face = makeFace(axis, step[axis] > 0);
       const auto ax = faceAxesInPlane(out.face);

@@ -18,8 +18,7 @@ namespace {
 std::pair<double, double> legendre(int n, double z)
 {
   double p0 = 1.0, p1 = 0.0;
-  for (int j = 0; j < n; ++j)
-  {
+  for (int j = 0; j < n; ++j) {
     const double p2 = p1;
     p1 = p0;
     p0 = ((2.0 * j + 1.0) * z * p1 - j * p2) / (j + 1.0);
@@ -32,15 +31,12 @@ void gaussLegendre(int n, std::vector<double>& x, std::vector<double>& w)
 {
   x.resize(n);
   w.resize(n);
-  for (int i = 0; i < n; ++i)
-  {
+  for (int i = 0; i < n; ++i) {
     double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    for (int it = 0; it < 100; ++it)
-    {
+    for (int it = 0; it < 100; ++it) {
       const auto [p, dp] = legendre(n, z);
       z -= p / dp;
-      if (std::abs(p / dp) < 1e-15)
-      {
+      if (std::abs(p / dp) < 1e-15) {
         break;
       }
     }
@@ -58,11 +54,9 @@ double wallFlux(double px, double py, double kappa, int n)
   gaussLegendre(n, x, w);
   double sum = 0.0;
   const int nphi = 4 * n;
-  for (int i = 0; i < n; ++i)
-  {
+  for (int i = 0; i < n; ++i) {
     const double st = std::sqrt(x[i]), ct = std::sqrt(1.0 - x[i]);
-    for (int k = 0; k < nphi; ++k)
-    {
+    for (int k = 0; k < nphi; ++k) {
       const double phi = 2.0 * kPi * (k + 0.5) / nphi;
       const Vec3 d(st * std::cos(phi), st * std::sin(phi), ct);
       double s = 1.0 / d[2];
@@ -81,10 +75,8 @@ double faceFlux(double kappa, int n)
   std::vector<double> x, w;
   gaussLegendre(n, x, w);
   double sum = 0.0;
-  for (int i = 0; i < n; ++i)
-  {
-    for (int j = 0; j < n; ++j)
-    {
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
       sum += w[i] * w[j] * wallFlux(x[i], x[j], kappa, n);
     }
   }
@@ -100,8 +92,7 @@ struct CubeResult
 CubeResult solveCube(int n, double kappa)
 {
   Scene s = cubeScene(n);
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     s.kappaA[v] = float(kappa);
     s.emissionI[v] = 1.0f;
   }
@@ -112,10 +103,8 @@ CubeResult solveCube(int n, double kappa)
   // Patches of zmin around the face centre (one if n is odd, four if even).
   double sum = 0.0;
   int count = 0;
-  for (int a = (n - 1) / 2; a <= n / 2; ++a)
-  {
-    for (int b = (n - 1) / 2; b <= n / 2; ++b)
-    {
+  for (int a = (n - 1) / 2; a <= n / 2; ++a) {
+    for (int b = (n - 1) / 2; b <= n / 2; ++b) {
       sum += sol.H[s.grid.patchIndex(Face::ZMin, a, b)];
       ++count;
     }
@@ -128,9 +117,10 @@ CubeResult solveCube(int n, double kappa)
 TEST(AbsorbingCube, ClosedFormQuadratureConverges)
 {
   // Our reference quadrature itself: doubling the order changes nothing.
-  for (double kappa : { 0.1, 1.0, 10.0 })
-  {
-    EXPECT_NEAR(wallFlux(0.5, 0.5, kappa, 64), wallFlux(0.5, 0.5, kappa, 128), 1e-4 * wallFlux(0.5, 0.5, kappa, 128));
+  for (double kappa : { 0.1, 1.0, 10.0 }) {
+    EXPECT_NEAR(wallFlux(0.5, 0.5, kappa, 64),
+                wallFlux(0.5, 0.5, kappa, 128),
+                1e-4 * wallFlux(0.5, 0.5, kappa, 128));
   }
   // Thick limit: a black body, q = E; thin limit: q = kappa E (mean of s cos / pi ...) -> 0.
   EXPECT_NEAR(wallFlux(0.5, 0.5, 200.0, 64), 1.0, 1e-4);
@@ -138,8 +128,7 @@ TEST(AbsorbingCube, ClosedFormQuadratureConverges)
 
 TEST(AbsorbingCube, WallFluxAndEscapingPowerMatchTheClosedForm)
 {
-  for (double kappa : { 0.1, 1.0, 10.0 })
-  {
+  for (double kappa : { 0.1, 1.0, 10.0 }) {
     const double qRef = wallFlux(0.5, 0.5, kappa, 64);
     const double escRef = 6.0 * faceFlux(kappa, 24);
     const CubeResult coarse = solveCube(4, kappa);
@@ -147,8 +136,13 @@ TEST(AbsorbingCube, WallFluxAndEscapingPowerMatchTheClosedForm)
     const double errCoarse = std::abs(coarse.centreFlux / qRef - 1.0);
     const double errFine = std::abs(fine.centreFlux / qRef - 1.0);
     const double escErr = std::abs(fine.escaped / escRef - 1.0);
-    std::printf("[measured] cube kappa*a=%g: q_ref=%.6f  4^3 err=%.3g  16^3 err=%.3g  escaping err (16^3)=%.3g\n",
-      kappa, qRef, errCoarse, errFine, escErr);
+    std::printf("[measured] cube kappa*a=%g: q_ref=%.6f  4^3 err=%.3g  16^3 err=%.3g  escaping err "
+                "(16^3)=%.3g\n",
+                kappa,
+                qRef,
+                errCoarse,
+                errFine,
+                escErr);
     EXPECT_LT(errFine, 0.01);
     EXPECT_LT(escErr, 0.01);
     EXPECT_LT(errFine, errCoarse);

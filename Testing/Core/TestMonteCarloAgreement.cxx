@@ -21,26 +21,27 @@ constexpr double kQuadratureTolerance = 0.02;
 
 struct Agreement
 {
-  double rmsRelative = 0.0;  ///< over voxels with G above 1% of the largest
-  double worstZ = 0.0;       ///< |diff| / (3 sigma_MC + tol G)
-  double meanSigma = 0.0;    ///< mean relative MC standard error
+  double rmsRelative = 0.0; ///< over voxels with G above 1% of the largest
+  double worstZ = 0.0;      ///< |diff| / (3 sigma_MC + tol G)
+  double meanSigma = 0.0;   ///< mean relative MC standard error
 };
 
-Agreement compare(const std::vector<double>& dense, const std::vector<double>& mc, const std::vector<double>& err)
+Agreement compare(const std::vector<double>& dense,
+                  const std::vector<double>& mc,
+                  const std::vector<double>& err)
 {
   const double big = *std::max_element(dense.begin(), dense.end());
   Agreement a;
   int n = 0;
-  for (std::size_t i = 0; i < dense.size(); ++i)
-  {
-    if (dense[i] < 0.01 * big)
-    {
+  for (std::size_t i = 0; i < dense.size(); ++i) {
+    if (dense[i] < 0.01 * big) {
       continue;
     }
     const double rel = (dense[i] - mc[i]) / dense[i];
     a.rmsRelative += rel * rel;
     a.meanSigma += err[i] / dense[i];
-    a.worstZ = std::max(a.worstZ, std::abs(dense[i] - mc[i]) / (3.0 * err[i] + kQuadratureTolerance * dense[i]));
+    a.worstZ = std::max(
+      a.worstZ, std::abs(dense[i] - mc[i]) / (3.0 * err[i] + kQuadratureTolerance * dense[i]));
     ++n;
   }
   a.rmsRelative = std::sqrt(a.rmsRelative / n);
@@ -56,19 +57,26 @@ void expectAgreement(const char* name, const Scene& s, long long photons)
   mo.zonal = true;
   const MonteCarloEstimate mc = estimateMonteCarlo(s, mo);
   const Agreement g = compare(dense.G, mc.G, mc.GStdErr);
-  std::printf("[measured] %s: G rms rel diff %.4f (MC sigma %.4f), worst z %.2f; dense %.2fs, MC %.2fs\n", name,
-    g.rmsRelative, g.meanSigma, g.worstZ, dense.stats.seconds, mc.seconds);
+  std::printf(
+    "[measured] %s: G rms rel diff %.4f (MC sigma %.4f), worst z %.2f; dense %.2fs, MC %.2fs\n",
+    name,
+    g.rmsRelative,
+    g.meanSigma,
+    g.worstZ,
+    dense.stats.seconds,
+    mc.seconds);
   EXPECT_LT(g.worstZ, 1.0) << name;
   EXPECT_LT(g.rmsRelative, 0.5 * kQuadratureTolerance + 1.5 * g.meanSigma) << name;
-  if (!s.normals.empty())
-  {
+  if (!s.normals.empty()) {
     const Agreement gp = compare(dense.Gplus, mc.Gplus, mc.GplusStdErr);
-    std::printf("[measured] %s: G+ rms rel diff %.4f (MC sigma %.4f), worst z %.2f\n", name, gp.rmsRelative,
-      gp.meanSigma, gp.worstZ);
+    std::printf("[measured] %s: G+ rms rel diff %.4f (MC sigma %.4f), worst z %.2f\n",
+                name,
+                gp.rmsRelative,
+                gp.meanSigma,
+                gp.worstZ);
     EXPECT_LT(gp.worstZ, 1.0) << name;
   }
-  for (const auto& e : dense.energy)
-  {
+  for (const auto& e : dense.energy) {
     EXPECT_LT(e.relativeResidual(), 1e-6) << name;
   }
 }
@@ -111,11 +119,9 @@ TEST(MonteCarloAgreement, ReflectingWallsPointLightAndSky)
 TEST(MonteCarloAgreement, RgbMediumWithSunAndEmission)
 {
   Scene s = cubeScene(8, 3);
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     const Vec3 x = s.grid.voxelCentre(v);
-    for (int c = 0; c < 3; ++c)
-    {
+    for (int c = 0; c < 3; ++c) {
       s.kappaA[v * 3 + c] = float(lumpy(x, 0.1, 1.5 + c, 0.5 * c));
       s.sigmaI[v * 3 + c] = float(lumpy(x, 0.5, 5.0 - c, 1.0 + c));
       s.emissionI[v * 3 + c] = float(x[2] < 0.3 ? 0.5 * (c + 1) : 0.0);
@@ -133,11 +139,9 @@ TEST(MonteCarloAgreement, ZonalDiscretisationErrorShrinksWithTheGrid)
   auto centralMean = [](const Scene& s, const std::vector<double>& G) {
     double sum = 0.0;
     int n = 0;
-    for (Index v = 0; v < s.grid.voxelCount(); ++v)
-    {
+    for (Index v = 0; v < s.grid.voxelCount(); ++v) {
       const Vec3 x = s.grid.voxelCentre(v);
-      if ((x - Vec3::Constant(0.5)).cwiseAbs().maxCoeff() < 0.25)
-      {
+      if ((x - Vec3::Constant(0.5)).cwiseAbs().maxCoeff() < 0.25) {
         sum += G[v];
         ++n;
       }
@@ -145,11 +149,9 @@ TEST(MonteCarloAgreement, ZonalDiscretisationErrorShrinksWithTheGrid)
     return sum / n;
   };
   double previous = 1.0;
-  for (int n : { 6, 12 })
-  {
+  for (int n : { 6, 12 }) {
     Scene s = cubeScene(n);
-    for (Index v = 0; v < s.grid.voxelCount(); ++v)
-    {
+    for (Index v = 0; v < s.grid.voxelCount(); ++v) {
       s.kappaA[v] = 0.33f;
       s.sigmaI[v] = 3.0f;
       s.emissionI[v] = 1.0f;
@@ -159,8 +161,12 @@ TEST(MonteCarloAgreement, ZonalDiscretisationErrorShrinksWithTheGrid)
     mo.photons = 4000000;
     const double transport = centralMean(s, estimateMonteCarlo(s, mo).G);
     const double err = std::abs(dense / transport - 1.0);
-    std::printf("[measured] zonal discretisation error %d^3: central mean G dense %.5f transport MC %.5f (%.4f)\n", n,
-      dense, transport, err);
+    std::printf("[measured] zonal discretisation error %d^3: central mean G dense %.5f transport "
+                "MC %.5f (%.4f)\n",
+                n,
+                dense,
+                transport,
+                err);
     EXPECT_LT(err, previous);
     previous = err;
   }

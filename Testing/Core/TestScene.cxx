@@ -15,12 +15,9 @@ namespace {
 
 std::string errorOf(const Scene& s)
 {
-  try
-  {
+  try {
     s.validate();
-  }
-  catch (const Error& e)
-  {
+  } catch (const Error& e) {
     return e.what();
   }
   return "";
@@ -37,7 +34,8 @@ TEST(Scene, BadValuesAreNamed)
 {
   Scene s = cubeScene(4);
   s.kappaA[s.grid.index(1, 2, 3)] = -1.0f;
-  EXPECT_NE(errorOf(s).find("kappa_a = -1 at voxel 57 (i=1, j=2, k=3)"), std::string::npos) << errorOf(s);
+  EXPECT_NE(errorOf(s).find("kappa_a = -1 at voxel 57 (i=1, j=2, k=3)"), std::string::npos)
+    << errorOf(s);
 
   s = cubeScene(4);
   s.sigmaI[5] = std::numeric_limits<float>::quiet_NaN();
@@ -78,19 +76,16 @@ TEST(Scene, GradientNormalsPointFromDenseToLessDense)
 {
   Scene s = cubeScene(6);
   std::vector<double> density(s.grid.voxelCount());
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     density[v] = 10.0 - s.grid.voxelCentre(v)[2] * 3.0; // denser at the bottom
   }
   const auto n = gradientNormals(s.grid, density);
-  for (const auto& x : n)
-  {
+  for (const auto& x : n) {
     EXPECT_NEAR(x[2], 1.0, 1e-6);
   }
   // A constant field has no gradient: no normals.
   std::fill(density.begin(), density.end(), 1.0);
-  for (const auto& x : gradientNormals(s.grid, density))
-  {
+  for (const auto& x : gradientNormals(s.grid, density)) {
     EXPECT_EQ(x[0] * x[0] + x[1] * x[1] + x[2] * x[2], 0.0f);
   }
 }

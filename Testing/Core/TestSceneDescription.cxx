@@ -11,12 +11,9 @@ namespace {
 
 std::string errorOf(const std::string& text)
 {
-  try
-  {
+  try {
     parseSceneDescription(text);
-  }
-  catch (const Error& e)
-  {
+  } catch (const Error& e) {
     return e.what();
   }
   return "";
@@ -71,36 +68,46 @@ TEST(SceneDescription, DefaultsWhenOnlyTheVersionIsGiven)
 TEST(SceneDescription, ErrorsNameTheKey)
 {
   EXPECT_NE(errorOf(R"({"version": 1, "colour": 2})").find("'colour'"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilom": 1}})").find("'solver.epsilom'"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilon": 0}})").find("solver.epsilon"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilon": "small"}})").find("must be a number"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"method": "fast"}})").find("solver.method"), std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilom": 1}})").find("'solver.epsilom'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilon": 0}})").find("solver.epsilon"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilon": "small"}})").find("must be a number"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"method": "fast"}})").find("solver.method"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 2})").find("version"), std::string::npos);
   EXPECT_NE(errorOf(R"({"channels": 1})").find("version"), std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, "channels": 2})").find("channels"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "channels": 3, "lights": [{"type": "point", "position": [0,0,0],
-    "intensity": [1, 2]}]})").find("lights[0].intensity"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "lights": [{"type": "spot"}]})").find("lights[0].type"), std::string::npos);
+  EXPECT_NE(
+    errorOf(R"({"version": 1, "channels": 3, "lights": [{"type": "point", "position": [0,0,0],
+    "intensity": [1, 2]}]})")
+      .find("lights[0].intensity"),
+    std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "lights": [{"type": "spot"}]})").find("lights[0].type"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, "lights": [{"type": "directional", "direction": [0,0,0]}]})")
-              .find("lights[0].direction"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "boundary": {"top": {}}})").find("'boundary.top'"), std::string::npos);
+              .find("lights[0].direction"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "boundary": {"top": {}}})").find("'boundary.top'"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, "boundary": {"xmin": {"type": "open", "reflectance": 0.5}}})")
-              .find("boundary.xmin"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "arrays": {"absorbtion": "k"}})").find("'arrays.absorbtion'"), std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "material": {"preset": "ct-bone"}})").find("material.preset"), std::string::npos);
+              .find("boundary.xmin"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "arrays": {"absorbtion": "k"}})").find("'arrays.absorbtion'"),
+            std::string::npos);
+  EXPECT_NE(errorOf(R"({"version": 1, "material": {"preset": "ct-bone"}})").find("material.preset"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, )").find("malformed JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"([1, 2])").find("must be an object"), std::string::npos);
 }
 
 TEST(SceneDescription, UnreadableFileIsNamed)
 {
-  try
-  {
+  try {
     readSceneDescription("/nonexistent/scene.json");
     FAIL();
-  }
-  catch (const Error& e)
-  {
+  } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/scene.json"), std::string::npos);
   }
 }

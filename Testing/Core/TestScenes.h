@@ -25,14 +25,13 @@ inline Scene cubeScene(int n, int channels = 1)
 inline double lumpy(const Vec3& x, double lo, double hi, double phase = 0.0)
 {
   const double f = 0.5 + 0.5 * std::sin(7.0 * x[0] + phase) * std::cos(5.0 * x[1] - 2.0 * phase) *
-    std::sin(6.0 * x[2] + 1.0 + phase);
+                           std::sin(6.0 * x[2] + 1.0 + phase);
   return lo + (hi - lo) * f;
 }
 
 inline void fill(Scene& s, std::vector<float>& a, int c, double (*f)(const Vec3&))
 {
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     a[std::size_t(v) * s.channels + c] = float(f(s.grid.voxelCentre(v)));
   }
 }
@@ -42,11 +41,9 @@ inline void radialNormals(Scene& s)
 {
   s.normals.resize(s.grid.voxelCount());
   const Vec3 c = 0.5 * (s.grid.lower() + s.grid.upper());
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     Vec3 d = s.grid.voxelCentre(v) - c;
-    if (d.norm() < 1e-9)
-    {
+    if (d.norm() < 1e-9) {
       d = Vec3::UnitZ();
     }
     d.normalize();
@@ -56,8 +53,7 @@ inline void radialNormals(Scene& s)
 
 inline void setAllFaces(Scene& s, const BoundaryCondition& bc)
 {
-  for (auto& b : s.boundary)
-  {
+  for (auto& b : s.boundary) {
     b = bc;
   }
 }

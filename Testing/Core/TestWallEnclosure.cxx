@@ -21,11 +21,10 @@ double faceToFace(const Scene& s, const ExchangeAreas& ex, Face a, Face b)
 {
   const Grid& g = s.grid;
   double sum = 0.0;
-  for (Index i = 0; i < g.facePatchCount(a); ++i)
-  {
-    for (Index j = 0; j < g.facePatchCount(b); ++j)
-    {
-      sum += ex.S(ex.elements.patchElement(g.facePatchOffset(a) + i), ex.elements.patchElement(g.facePatchOffset(b) + j));
+  for (Index i = 0; i < g.facePatchCount(a); ++i) {
+    for (Index j = 0; j < g.facePatchCount(b); ++j) {
+      sum += ex.S(ex.elements.patchElement(g.facePatchOffset(a) + i),
+                  ex.elements.patchElement(g.facePatchOffset(b) + j));
     }
   }
   return sum / g.faceArea(a);
@@ -40,11 +39,16 @@ TEST(WallEnclosure, FaceFormFactorsOfAnEmptyCube)
   wall.type = BoundaryCondition::Type::Wall;
   setAllFaces(s, wall);
   const ProgressCallback none;
-  const ExchangeAreas ex = computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(none, 0, 1));
+  const ExchangeAreas ex =
+    computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(none, 0, 1));
   const double parallel = faceToFace(s, ex, Face::ZMin, Face::ZMax);
   const double perpendicular = faceToFace(s, ex, Face::ZMin, Face::XMax);
-  std::printf("[measured] cube faces: parallel %.5f (exact %.5f), perpendicular %.5f (exact %.5f)\n", parallel,
-    kParallel, perpendicular, kPerpendicular);
+  std::printf(
+    "[measured] cube faces: parallel %.5f (exact %.5f), perpendicular %.5f (exact %.5f)\n",
+    parallel,
+    kParallel,
+    perpendicular,
+    kPerpendicular);
   EXPECT_NEAR(parallel / kParallel, 1.0, 0.01);
   EXPECT_NEAR(perpendicular / kPerpendicular, 1.0, 0.01);
 }
@@ -67,8 +71,7 @@ TEST(WallEnclosure, ReflectingBoxConservesEnergy)
   // In a closed uniform-rho enclosure: sum A H = sum A B (all light lands on
   // walls), and sum A B = emitted + rho sum A H, so sum A H = E/(1-rho).
   double totalH = 0.0;
-  for (Index p = 0; p < s.grid.patchCount(); ++p)
-  {
+  for (Index p = 0; p < s.grid.patchCount(); ++p) {
     totalH += sol.H[p] * s.grid.patchArea(s.grid.patchLocation(p).face);
   }
   EXPECT_NEAR(totalH, 1.0 / 0.3, 1e-8);

@@ -12,11 +12,10 @@ using namespace volrad::test;
 namespace {
 
 /// Emission E in every voxel of a medium with the given absorption and scattering.
-template <class FA, class FS>
+template<class FA, class FS>
 void emittingMedium(Scene& s, double E, FA kappaA, FS sigmaI)
 {
-  for (Index v = 0; v < s.grid.voxelCount(); ++v)
-  {
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
     const Vec3 x = s.grid.voxelCentre(v);
     s.kappaA[v] = float(kappaA(x));
     s.sigmaI[v] = float(sigmaI(x));
@@ -27,8 +26,7 @@ void emittingMedium(Scene& s, double E, FA kappaA, FS sigmaI)
 double maxRelativeError(const std::vector<double>& a, double expected)
 {
   double worst = 0.0;
-  for (double x : a)
-  {
+  for (double x : a) {
     worst = std::max(worst, std::abs(x - expected) / expected);
   }
   return worst;
@@ -40,7 +38,8 @@ void expectFurnace(const char* name, const Scene& s, double E, std::vector<doubl
   const Solution sol = solveDense(s);
   const double errG = maxRelativeError(sol.G, 4.0 * E);
   const double errField = maxRelativeError(sol.*field, E);
-  std::printf("[measured] %s: max |G/4E - 1| = %.3g, max |field/E - 1| = %.3g\n", name, errG, errField);
+  std::printf(
+    "[measured] %s: max |G/4E - 1| = %.3g, max |field/E - 1| = %.3g\n", name, errG, errField);
   EXPECT_LT(errG, 1e-3);
   EXPECT_LT(errField, 1e-3);
 }
@@ -52,7 +51,10 @@ TEST(WhiteFurnace, EmittingAbsorbingScatteringMediumInOpenSpace)
   Scene s = cubeScene(10);
   const double E = 2.5;
   emittingMedium(
-    s, E, [](const Vec3& x) { return lumpy(x, 0.05, 30.0); }, [](const Vec3& x) { return lumpy(x, 0.0, 20.0, 1.3); });
+    s,
+    E,
+    [](const Vec3& x) { return lumpy(x, 0.05, 30.0); },
+    [](const Vec3& x) { return lumpy(x, 0.0, 20.0, 1.3); });
   BoundaryCondition open;
   open.radiance = uniformChannels(E / kPi);
   setAllFaces(s, open);
@@ -64,7 +66,10 @@ TEST(WhiteFurnace, BlackEmittingWallsGiveTheSameAnswer)
   Scene s = cubeScene(8);
   const double E = 1.0;
   emittingMedium(
-    s, E, [](const Vec3& x) { return lumpy(x, 0.5, 12.0, 0.4); }, [](const Vec3& x) { return lumpy(x, 0.0, 8.0, 2.0); });
+    s,
+    E,
+    [](const Vec3& x) { return lumpy(x, 0.5, 12.0, 0.4); },
+    [](const Vec3& x) { return lumpy(x, 0.0, 8.0, 2.0); });
   BoundaryCondition wall;
   wall.type = BoundaryCondition::Type::Wall;
   wall.emission = uniformChannels(E);

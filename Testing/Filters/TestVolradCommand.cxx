@@ -14,8 +14,8 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
-#include <sys/wait.h>
 #include <string>
+#include <sys/wait.h>
 
 namespace {
 
@@ -28,13 +28,17 @@ struct CommandRun
 CommandRun run(const std::string& args)
 {
   const std::string log = std::string(VOLRAD_TEST_OUTPUT_DIR) + "/volrad.log";
-  const int status = std::system((std::string(VOLRAD_COMMAND) + " " + args + " > " + log + " 2>&1").c_str());
+  const int status =
+    std::system((std::string(VOLRAD_COMMAND) + " " + args + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return { WEXITSTATUS(status), text };
 }
 
-bool exists(const std::string& path) { return bool(std::ifstream(path)); }
+bool exists(const std::string& path)
+{
+  return bool(std::ifstream(path));
+}
 
 const std::string kData = VOLRAD_DATA_DIR;
 const std::string kOut = VOLRAD_TEST_OUTPUT_DIR;
@@ -45,20 +49,25 @@ TEST(VolradCommand, SolvesTheBundledSceneAndWritesTheDocumentedArrays)
 {
   const std::string out = kOut + "/neghip16-lit.vti";
   std::remove(out.c_str());
-  const CommandRun r = run(kData + "/neghip16.vti --scene " + kData + "/neghip16.scene.json -o " + out);
+  const CommandRun r =
+    run(kData + "/neghip16.vti --scene " + kData + "/neghip16.scene.json -o " + out);
   ASSERT_EQ(r.code, 0) << r.output;
   vtkNew<vtkXMLImageDataReader> reader;
   reader->SetFileName(out.c_str());
   reader->Update();
   vtkImageData* image = reader->GetOutput();
   ASSERT_EQ(image->GetNumberOfPoints(), 16 * 16 * 16);
-  for (const char* name : { "IncidentRadiation", "IsotropicRadiosity", "DiffuseRadiosity", "FrontIncidentRadiation",
-         "AbsorbedPower", "density" })
-  {
+  for (const char* name : { "IncidentRadiation",
+                            "IsotropicRadiosity",
+                            "DiffuseRadiosity",
+                            "FrontIncidentRadiation",
+                            "AbsorbedPower",
+                            "density" }) {
     EXPECT_NE(image->GetPointData()->GetArray(name), nullptr) << name;
   }
   EXPECT_EQ(image->GetPointData()->GetArray("IncidentRadiation")->GetDataType(), VTK_FLOAT);
-  const double residual = image->GetFieldData()->GetArray("EnergyBalanceResidual")->GetComponent(0, 0);
+  const double residual =
+    image->GetFieldData()->GetArray("EnergyBalanceResidual")->GetComponent(0, 0);
   EXPECT_LT(residual, 1e-6);
 }
 

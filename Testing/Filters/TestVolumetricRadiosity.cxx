@@ -26,7 +26,7 @@
 namespace {
 
 /// An 8x7x6 image with integer-valued coefficients (exact in every type).
-template <class ArrayT>
+template<class ArrayT>
 vtkSmartPointer<vtkImageData> makeImage(int extentShift = 0)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
@@ -37,8 +37,7 @@ vtkSmartPointer<vtkImageData> makeImage(int extentShift = 0)
     vtkNew<ArrayT> a;
     a->SetName(name);
     a->SetNumberOfTuples(image->GetNumberOfPoints());
-    for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
-    {
+    for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i) {
       a->SetTuple1(i, f(i));
     }
     image->GetPointData()->AddArray(a);
@@ -67,13 +66,12 @@ std::vector<float> runFilter(vtkImageData* image, const char* scene, std::string
   f->AddObserver(vtkCommand::ErrorEvent, cb);
   f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
   f->Update();
-  if (error)
-  {
+  if (error) {
     *error = messages;
   }
   std::vector<float> g;
-  if (auto* a = vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation")))
-  {
+  if (auto* a = vtkFloatArray::SafeDownCast(
+        f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))) {
     g.assign(a->GetPointer(0), a->GetPointer(0) + a->GetNumberOfValues());
   }
   return g;
@@ -92,8 +90,7 @@ TEST(VolumetricRadiosity, OutputEqualsTheCoreSolution)
   s.grid.spacing = volrad::Vec3(0.5, 0.25, 0.4);
   s.grid.origin = volrad::Vec3(1.0, -2.0, 3.0);
   s.allocate();
-  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
-  {
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i) {
     s.kappaA[i] = float(1 + i % 3);
     s.sigmaI[i] = float((i * 7) % 5);
     s.emissionI[i] = i % 11 == 0 ? 2.0f : 0.0f;
@@ -102,8 +99,7 @@ TEST(VolumetricRadiosity, OutputEqualsTheCoreSolution)
   s.boundary[4].type = volrad::BoundaryCondition::Type::Wall;
   s.boundary[4].reflectance = volrad::uniformChannels(0.5);
   const volrad::Solution sol = volrad::solveDense(s);
-  for (std::size_t i = 0; i < g.size(); ++i)
-  {
+  for (std::size_t i = 0; i < g.size(); ++i) {
     EXPECT_NEAR(g[i], sol.G[i], 1e-5 * sol.G[i] + 1e-12) << i;
   }
 }
@@ -120,7 +116,8 @@ TEST(VolumetricRadiosity, EveryScalarTypeGivesTheSameField)
 TEST(VolumetricRadiosity, NonZeroExtentsGiveTheSameField)
 {
   // Same world-space voxels, described with a shifted extent and origin.
-  EXPECT_EQ(runFilter(makeImage<vtkDoubleArray>(3), kScene), runFilter(makeImage<vtkDoubleArray>(0), kScene));
+  EXPECT_EQ(runFilter(makeImage<vtkDoubleArray>(3), kScene),
+            runFilter(makeImage<vtkDoubleArray>(0), kScene));
 }
 
 TEST(VolumetricRadiosity, OutputArraysAndStatistics)
@@ -131,20 +128,28 @@ TEST(VolumetricRadiosity, OutputArraysAndStatistics)
   f->SetSceneJSON(kScene);
   f->Update();
   vtkImageData* out = f->GetOutput();
-  for (const char* name : { "IncidentRadiation", "IsotropicRadiosity", "DiffuseRadiosity", "FrontIncidentRadiation",
-         "AbsorbedPower", "kappa_a" })
-  {
+  for (const char* name : { "IncidentRadiation",
+                            "IsotropicRadiosity",
+                            "DiffuseRadiosity",
+                            "FrontIncidentRadiation",
+                            "AbsorbedPower",
+                            "kappa_a" }) {
     EXPECT_NE(out->GetPointData()->GetArray(name), nullptr) << name;
   }
-  for (const char* name : { "EnergyEmitted", "EnergyAbsorbed", "EnergyEscaped", "EnergyAbsorbedWalls", "Iterations",
-         "Links", "SolveSeconds", "FinalUnshot" })
-  {
+  for (const char* name : { "EnergyEmitted",
+                            "EnergyAbsorbed",
+                            "EnergyEscaped",
+                            "EnergyAbsorbedWalls",
+                            "Iterations",
+                            "Links",
+                            "SolveSeconds",
+                            "FinalUnshot" }) {
     EXPECT_NE(out->GetFieldData()->GetArray(name), nullptr) << name;
   }
   const double emitted = out->GetFieldData()->GetArray("EnergyEmitted")->GetComponent(0, 0);
   const double removed = out->GetFieldData()->GetArray("EnergyAbsorbed")->GetComponent(0, 0) +
-    out->GetFieldData()->GetArray("EnergyAbsorbedWalls")->GetComponent(0, 0) +
-    out->GetFieldData()->GetArray("EnergyEscaped")->GetComponent(0, 0);
+                         out->GetFieldData()->GetArray("EnergyAbsorbedWalls")->GetComponent(0, 0) +
+                         out->GetFieldData()->GetArray("EnergyEscaped")->GetComponent(0, 0);
   EXPECT_NEAR(removed / emitted, 1.0, 1e-6);
 }
 
@@ -154,7 +159,8 @@ TEST(VolumetricRadiosity, ANamedArrayThatIsMissingIsZeroWithAWarning)
   auto image = makeImage<vtkFloatArray>();
   vtkNew<vtkVolumetricRadiosity> f;
   f->SetInputData(image);
-  f->SetSceneJSON(R"({"version": 1, "arrays": {"absorption": "kappa_a", "surface_emission": "glow"}})");
+  f->SetSceneJSON(
+    R"({"version": 1, "arrays": {"absorption": "kappa_a", "surface_emission": "glow"}})");
   std::string warnings;
   vtkNew<vtkCallbackCommand> cb;
   cb->SetClientData(&warnings);
@@ -164,10 +170,13 @@ TEST(VolumetricRadiosity, ANamedArrayThatIsMissingIsZeroWithAWarning)
   f->AddObserver(vtkCommand::WarningEvent, cb);
   f->Update();
   EXPECT_NE(warnings.find("'glow'"), std::string::npos) << warnings;
-  EXPECT_EQ(runFilter(image, R"({"version": 1})"),
-    std::vector<float>(vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))
-                         ->GetPointer(0),
-      vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))->GetPointer(0) +
+  EXPECT_EQ(
+    runFilter(image, R"({"version": 1})"),
+    std::vector<float>(
+      vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))
+        ->GetPointer(0),
+      vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))
+          ->GetPointer(0) +
         image->GetNumberOfPoints()));
 }
 
@@ -175,7 +184,8 @@ TEST(VolumetricRadiosity, BadInputGivesAClearErrorAndNoField)
 {
   std::string error;
 
-  EXPECT_TRUE(runFilter(makeImage<vtkFloatArray>(), R"({"version": 1, "bogus": 1})", &error).empty());
+  EXPECT_TRUE(
+    runFilter(makeImage<vtkFloatArray>(), R"({"version": 1, "bogus": 1})", &error).empty());
   EXPECT_NE(error.find("'bogus'"), std::string::npos) << error;
 
   auto nan = makeImage<vtkFloatArray>();
@@ -205,8 +215,7 @@ TEST(VolumetricRadiosity, BadInputGivesAClearErrorAndNoField)
 
 TEST(VolumetricRadiosity, OneVoxelAndFlatImagesSolve)
 {
-  for (int nz : { 1, 4 })
-  {
+  for (int nz : { 1, 4 }) {
     vtkNew<vtkImageData> image;
     image->SetDimensions(nz == 1 ? 1 : 5, nz == 1 ? 1 : 3, nz);
     vtkNew<vtkFloatArray> k;
@@ -219,10 +228,11 @@ TEST(VolumetricRadiosity, OneVoxelAndFlatImagesSolve)
     e->Fill(1.0);
     image->GetPointData()->AddArray(k);
     image->GetPointData()->AddArray(e);
-    const auto g = runFilter(image, R"({"version": 1, "boundary": {"default": {"type": "open", "radiance": 0.3183098861837907}}})");
+    const auto g = runFilter(
+      image,
+      R"({"version": 1, "boundary": {"default": {"type": "open", "radiance": 0.3183098861837907}}})");
     ASSERT_EQ(g.size(), std::size_t(image->GetNumberOfPoints()));
-    for (float x : g)
-    {
+    for (float x : g) {
       EXPECT_NEAR(x, 4.0, 1e-4); // a white furnace: G = 4E whatever the shape
     }
   }
