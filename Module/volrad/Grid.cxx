@@ -16,15 +16,6 @@ const char* faceName(Face f)
   return names[static_cast<int>(f)];
 }
 
-Index Grid::facePatchOffset(Face f) const
-{
-  Index offset = 0;
-  for (int i = 0; i < static_cast<int>(f); ++i) {
-    offset += facePatchCount(static_cast<Face>(i));
-  }
-  return offset;
-}
-
 PatchLocation Grid::patchLocation(Index p) const
 {
   for (int fi = 0; fi < kFaceCount; ++fi) {

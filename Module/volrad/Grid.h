@@ -98,7 +98,14 @@ struct Grid
     const auto ax = faceAxesInPlane(f);
     return Index(dims[ax[0]]) * dims[ax[1]];
   }
-  Index facePatchOffset(Face f) const;
+  /// Patches are numbered face by face (xmin, xmax, ymin, ...); closed form
+  /// because the traversal asks for it once per ray.
+  Index facePatchOffset(Face f) const
+  {
+    const Index yz = Index(dims[1]) * dims[2], xz = Index(dims[0]) * dims[2], xy = Index(dims[0]) * dims[1];
+    const Index before[kFaceCount] = { 0, yz, 2 * yz, 2 * yz + xz, 2 * (yz + xz), 2 * (yz + xz) + xy };
+    return before[static_cast<int>(f)];
+  }
   Index patchCount() const { return facePatchOffset(Face::ZMax) + facePatchCount(Face::ZMax); }
   Index patchIndex(Face f, int a, int b) const
   {
