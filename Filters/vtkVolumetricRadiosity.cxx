@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumetricRadiosity.h"
 
+#include "vtkCellData.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -42,6 +43,11 @@ void readCoefficient(vtkImageData* input,
   if (!a) {
     if (input->GetPointData()->GetAbstractArray(binding.name.c_str())) {
       throw volrad::Error("point-data array '" + binding.name + "' is not numeric");
+    }
+    if (input->GetCellData()->GetAbstractArray(binding.name.c_str())) {
+      throw volrad::Error("'" + binding.name +
+                          "' is a cell-data array: VolRad reads point data (one value per voxel "
+                          "centre); convert it with vtkCellDataToPointData");
     }
     if (binding.required) {
       missing += (missing.empty() ? "'" : ", '") + binding.name + "'";
@@ -105,6 +111,12 @@ volrad::Scene makeScene(vtkImageData* input,
   input->GetDimensions(dims);
   if (input->GetNumberOfPoints() < 1 || dims[0] < 1 || dims[1] < 1 || dims[2] < 1) {
     throw volrad::Error("the input image is empty");
+  }
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2) {
+    throw volrad::Error("the input image is " + std::to_string(dims[0]) + " x " +
+                        std::to_string(dims[1]) + " x " + std::to_string(dims[2]) +
+                        " points: volumetric radiosity needs a 3-D volume, at least 2 points "
+                        "along every axis");
   }
   double spacing[3], origin[3];
   input->GetSpacing(spacing);

@@ -4,6 +4,7 @@
 #include "vtkVolumetricRadiosity.h"
 
 #include "vtkCallbackCommand.h"
+#include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
 #include "vtkExecutive.h"
@@ -21,6 +22,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 namespace {
@@ -213,27 +215,55 @@ TEST(VolumetricRadiosity, BadInputGivesAClearErrorAndNoField)
   EXPECT_FALSE(error.empty());
 }
 
-TEST(VolumetricRadiosity, OneVoxelAndFlatImagesSolve)
+TEST(VolumetricRadiosity, OneVoxelAndFlatImagesAreRefused)
 {
-  for (int nz : { 1, 4 }) {
+  for (const auto& dims : { std::array<int, 3>{ 1, 1, 1 },
+                            std::array<int, 3>{ 5, 3, 1 },
+                            std::array<int, 3>{ 1, 4, 4 } }) {
     vtkNew<vtkImageData> image;
-    image->SetDimensions(nz == 1 ? 1 : 5, nz == 1 ? 1 : 3, nz);
+    image->SetDimensions(dims.data());
     vtkNew<vtkFloatArray> k;
     k->SetName("kappa_a");
     k->SetNumberOfTuples(image->GetNumberOfPoints());
     k->Fill(1.0);
-    vtkNew<vtkFloatArray> e;
-    e->SetName("E_I");
-    e->SetNumberOfTuples(image->GetNumberOfPoints());
-    e->Fill(1.0);
     image->GetPointData()->AddArray(k);
-    image->GetPointData()->AddArray(e);
-    const auto g = runFilter(
-      image,
-      R"({"version": 1, "boundary": {"default": {"type": "open", "radiance": 0.3183098861837907}}})");
-    ASSERT_EQ(g.size(), std::size_t(image->GetNumberOfPoints()));
-    for (float x : g) {
-      EXPECT_NEAR(x, 4.0, 1e-4); // a white furnace: G = 4E whatever the shape
-    }
+    std::string error;
+    EXPECT_TRUE(runFilter(image, R"({"version": 1})", &error).empty());
+    EXPECT_NE(error.find("needs a 3-D volume"), std::string::npos) << error;
   }
+}
+
+TEST(VolumetricRadiosity, SmallestVolumeIsAWhiteFurnace)
+{
+  // 2 x 2 x 2 voxels emitting E in a sky of radiance E/pi: G = 4E.
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(2, 2, 2);
+  for (const char* name : { "kappa_a", "E_I" }) {
+    vtkNew<vtkFloatArray> a;
+    a->SetName(name);
+    a->SetNumberOfTuples(image->GetNumberOfPoints());
+    a->Fill(1.0);
+    image->GetPointData()->AddArray(a);
+  }
+  const auto g = runFilter(
+    image,
+    R"({"version": 1, "boundary": {"default": {"type": "open", "radiance": 0.3183098861837907}}})");
+  ASSERT_EQ(g.size(), 8u);
+  for (float x : g) {
+    EXPECT_NEAR(x, 4.0, 1e-4);
+  }
+}
+
+TEST(VolumetricRadiosity, CellDataCoefficientsAreNamedInTheError)
+{
+  auto image = makeImage<vtkFloatArray>();
+  image->GetPointData()->RemoveArray("kappa_a");
+  vtkNew<vtkFloatArray> cells;
+  cells->SetName("kappa_a");
+  cells->SetNumberOfTuples(image->GetNumberOfCells());
+  cells->Fill(1.0);
+  image->GetCellData()->AddArray(cells);
+  std::string error;
+  EXPECT_TRUE(runFilter(image, kScene, &error).empty());
+  EXPECT_NE(error.find("'kappa_a' is a cell-data array"), std::string::npos) << error;
 }
