@@ -50,6 +50,17 @@ vtkSmartPointer<vtkImageData> makeImage(int extentShift = 0)
   return image;
 }
 
+/// Adds an array of `tuples` x `components` ones to point or cell data.
+void addOnes(vtkDataSetAttributes* data, const char* name, vtkIdType tuples, int components = 1)
+{
+  vtkNew<vtkFloatArray> a;
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  a->Fill(1.0);
+  data->AddArray(a);
+}
+
 const char* kScene = R"({"version": 1, "solver": {"method": "dense"},
   "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "irradiance": 2}],
   "boundary": {"zmin": {"type": "wall", "reflectance": 0.5}}})";
@@ -201,12 +212,7 @@ TEST(VolumetricRadiosity, BadInputGivesAClearErrorAndNoField)
   EXPECT_NE(error.find("sigma_i = -2"), std::string::npos) << error;
 
   auto rgb = makeImage<vtkFloatArray>();
-  vtkNew<vtkFloatArray> two;
-  two->SetName("kappa_a");
-  two->SetNumberOfComponents(2);
-  two->SetNumberOfTuples(rgb->GetNumberOfPoints());
-  two->Fill(1.0);
-  rgb->GetPointData()->AddArray(two);
+  addOnes(rgb->GetPointData(), "kappa_a", rgb->GetNumberOfPoints(), 2);
   EXPECT_TRUE(runFilter(rgb, R"({"version": 1, "channels": 3})", &error).empty());
   EXPECT_NE(error.find("2 components"), std::string::npos) << error;
 
@@ -222,11 +228,7 @@ TEST(VolumetricRadiosity, OneVoxelAndFlatImagesAreRefused)
                             std::array<int, 3>{ 1, 4, 4 } }) {
     vtkNew<vtkImageData> image;
     image->SetDimensions(dims.data());
-    vtkNew<vtkFloatArray> k;
-    k->SetName("kappa_a");
-    k->SetNumberOfTuples(image->GetNumberOfPoints());
-    k->Fill(1.0);
-    image->GetPointData()->AddArray(k);
+    addOnes(image->GetPointData(), "kappa_a", image->GetNumberOfPoints());
     std::string error;
     EXPECT_TRUE(runFilter(image, R"({"version": 1})", &error).empty());
     EXPECT_NE(error.find("needs a 3-D volume"), std::string::npos) << error;
@@ -239,11 +241,7 @@ TEST(VolumetricRadiosity, SmallestVolumeIsAWhiteFurnace)
   vtkNew<vtkImageData> image;
   image->SetDimensions(2, 2, 2);
   for (const char* name : { "kappa_a", "E_I" }) {
-    vtkNew<vtkFloatArray> a;
-    a->SetName(name);
-    a->SetNumberOfTuples(image->GetNumberOfPoints());
-    a->Fill(1.0);
-    image->GetPointData()->AddArray(a);
+    addOnes(image->GetPointData(), name, image->GetNumberOfPoints());
   }
   const auto g = runFilter(
     image,
@@ -258,11 +256,7 @@ TEST(VolumetricRadiosity, CellDataCoefficientsAreNamedInTheError)
 {
   auto image = makeImage<vtkFloatArray>();
   image->GetPointData()->RemoveArray("kappa_a");
-  vtkNew<vtkFloatArray> cells;
-  cells->SetName("kappa_a");
-  cells->SetNumberOfTuples(image->GetNumberOfCells());
-  cells->Fill(1.0);
-  image->GetCellData()->AddArray(cells);
+  addOnes(image->GetCellData(), "kappa_a", image->GetNumberOfCells());
   std::string error;
   EXPECT_TRUE(runFilter(image, kScene, &error).empty());
   EXPECT_NE(error.find("'kappa_a' is a cell-data array"), std::string::npos) << error;
