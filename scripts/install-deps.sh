@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libvtk9-dev vtk9 python3-vtk9
   libeigen3-dev libtbb-dev nlohmann-json3-dev
+  libopenvdb-dev libboost-iostreams-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb
 )
