@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "volrad/ExchangeAreas.h"
+#include "volrad/NearField.h"
 
 #include "volrad/Error.h"
 #include "volrad/Sampling.h"
@@ -39,10 +40,61 @@ struct ChannelMedium
   }
 };
 
-/// Follows one ray and adds to each crossed element the probability that
-/// its first collision is there (exact for the piecewise-constant medium).
-/// rowB, when given, receives the same deposits (the emitter's front row).
-/// Everything is multiplied by weight.
+/// Follows one ray of the given weight and hands each crossed element the
+/// probability that the ray's first collision is there (exact for the
+/// piecewise-constant medium): sink(element, amount). Stops at tMax;
+/// returns the weight still travelling there (0 when the ray left the
+/// domain, its remainder then going to the patch it leaves by).
+template<class Sink>
+double depositRay(const ChannelMedium& m,
+                  const ExchangeElements& el,
+                  const Vec3& x,
+                  const Vec3& d,
+                  double weight,
+                  double tMax,
+                  Sink&& sink)
+{
+  double T = weight;
+  const DomainExit exit =
+    traverseVoxels(m.scene.grid, x, d, tMax, [&](Index v, double length, double) {
+      const double k = m.kappaT[v];
+      if (k <= 0.0) {
+        return true;
+      }
+      const double p = T * -std::expm1(-k * length); // exact also where k * length is tiny
+      T *= std::exp(-k * length);
+      sink(el.full[v], p);
+      // Light travelling along d reaches v's front side from v's front iff
+      // the emitter lies in front of v, i.e. n_v . d < 0.
+      const Index er = el.front[v];
+      if (er >= 0 && m.normalDot(v, d) < 0.0) {
+        sink(er, p);
+      }
+      return T > kNegligibleTransmittance * weight;
+    });
+  if (exit.exited) {
+    sink(el.patchElement(exit.patch), T);
+    return 0.0;
+  }
+  return T > kNegligibleTransmittance * weight ? T : 0.0;
+}
+
+/// Adds to rowA and, when given, rowB (either may be null).
+struct RowSink
+{
+  double* rowA;
+  double* rowB;
+  void operator()(Index e, double p) const
+  {
+    if (rowA) {
+      rowA[e] += p;
+    }
+    if (rowB) {
+      rowB[e] += p;
+    }
+  }
+};
+
 void depositRayWeighted(const ChannelMedium& m,
                         const ExchangeElements& el,
                         const Vec3& x,
@@ -51,49 +103,7 @@ void depositRayWeighted(const ChannelMedium& m,
                         double* rowA,
                         double* rowB)
 {
-  double T = weight;
-  const DomainExit exit =
-    traverseVoxels(m.scene.grid,
-                   x,
-                   d,
-                   std::numeric_limits<double>::infinity(),
-                   [&](Index v, double length, double) {
-                     const double k = m.kappaT[v];
-                     if (k <= 0.0) {
-                       return true;
-                     }
-                     const double p =
-                       T * -std::expm1(-k * length); // exact also where k * length is tiny
-                     T *= std::exp(-k * length);
-                     const Index ef = el.full[v];
-                     if (rowA) {
-                       rowA[ef] += p;
-                     }
-                     if (rowB) {
-                       rowB[ef] += p;
-                     }
-                     const Index er = el.front[v];
-                     // Light travelling along d reaches v's front side from v's front iff
-                     // the emitter lies in front of v, i.e. n_v . d < 0.
-                     if (er >= 0 && m.normalDot(v, d) < 0.0) {
-                       if (rowA) {
-                         rowA[er] += p;
-                       }
-                       if (rowB) {
-                         rowB[er] += p;
-                       }
-                     }
-                     return T > kNegligibleTransmittance * weight;
-                   });
-  if (exit.exited) {
-    const Index e = el.patchElement(exit.patch);
-    if (rowA) {
-      rowA[e] += T;
-    }
-    if (rowB) {
-      rowB[e] += T;
-    }
-  }
+  depositRay(m, el, x, d, weight, std::numeric_limits<double>::infinity(), RowSink{ rowA, rowB });
 }
 
 /// Chord length from x (on the boundary of the box [lo, lo + size]) back
@@ -111,19 +121,38 @@ double chordBack(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& size)
   return std::max(0.0, l);
 }
 
-/// Gathers the rows of voxel v (kappa_t > 0) over the lines that leave it:
-/// each line is parametrised by its exit point on one of v's faces and its
-/// direction (d mu = cos(theta) dA dw), and the emission of v along it is
-/// integrated exactly, 1 - exp(-kappa_t l). The part collided inside v,
-/// kappa_t l - (1 - exp(-kappa_t l)), is v's self term. Lines whose
-/// direction leaves through v's front (n_v . d > 0) also go into rowFront.
-/// Returns the total weight (the voxel's surface area).
-void gatherVoxelLines(const ChannelMedium& m,
-                      const ExchangeElements& el,
-                      Index v,
-                      const QuadratureSettings& q,
-                      double* rowFull,
-                      double* rowFront)
+/// Distance along d from x to the boundary of the box [lo, hi] (x inside).
+double distanceToBoxExit(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& hi)
+{
+  double t = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] > 0.0) {
+      t = std::min(t, (hi[a] - x[a]) / d[a]);
+    } else if (d[a] < 0.0) {
+      t = std::min(t, (lo[a] - x[a]) / d[a]);
+    }
+  }
+  return std::max(0.0, t);
+}
+
+/// The lines leaving voxel v (kappa_t > 0), parametrised by their exit
+/// point on one of v's faces and their direction (d mu = cos(theta) dA dw);
+/// the emission of v along each is integrated exactly, 1 - exp(-kappa_t l),
+/// and the part collided inside v, kappa_t l - (1 - exp(-kappa_t l)), is
+/// v's self term. sink(element, amount, front) receives every deposit;
+/// front is true for lines leaving through v's front (n_v . d > 0) when v
+/// has a front side. With `truncate`, lines are followed only to the
+/// boundary of the box [reachLo, reachHi]; returns the weight they still
+/// carry there.
+template<class Sink>
+double gatherVoxelLinesInto(const ChannelMedium& m,
+                            const ExchangeElements& el,
+                            Index v,
+                            const QuadratureSettings& q,
+                            bool truncate,
+                            const Vec3& reachLo,
+                            const Vec3& reachHi,
+                            Sink&& sink)
 {
   const Grid& g = m.scene.grid;
   const double kt = m.kappaT[v];
@@ -131,6 +160,7 @@ void gatherVoxelLines(const ChannelMedium& m,
   const Index selfFront = el.front[v];
   const Vec3 lo = g.voxelLower(v);
   const auto c = g.ijk(v);
+  double leftover = 0.0;
   Rng rng(q.seed, std::uint64_t(v));
   for (int fi = 0; fi < kFaceCount; ++fi) {
     const Face f = static_cast<Face>(fi);
@@ -160,27 +190,41 @@ void gatherVoxelLines(const ChannelMedium& m,
         const double l = chordBack(x, d, lo, g.spacing);
         const double escape = -std::expm1(-kt * l);
         const double selfCollided = kt * l - escape;
-        const bool front = rowFront && m.normalDot(v, d) > 0.0;
+        const bool front = selfFront >= 0 && m.normalDot(v, d) > 0.0;
         // Self terms: emitted along this line and collided in v itself.
-        rowFull[self] += w * selfCollided;
+        sink(self, w * selfCollided, front);
         if (selfFront >= 0 && m.normalDot(v, d) < 0.0) {
-          rowFull[selfFront] += w * selfCollided;
-        }
-        if (front) {
-          rowFront[self] += w * selfCollided;
+          sink(selfFront, w * selfCollided, front);
         }
         if (boundary) {
-          rowFull[patch] += w * escape;
-          if (front) {
-            rowFront[patch] += w * escape;
-          }
+          sink(patch, w * escape, front);
           continue;
         }
         // The escaping part, carried on to its first collision.
-        depositRayWeighted(m, el, x, d, w * escape, rowFull, front ? rowFront : nullptr);
+        const double tMax = truncate ? distanceToBoxExit(x, d, reachLo, reachHi)
+                                     : std::numeric_limits<double>::infinity();
+        leftover +=
+          depositRay(m, el, x, d, w * escape, tMax, [&](Index e, double p) { sink(e, p, front); });
       }
     }
   }
+  return leftover;
+}
+
+void gatherVoxelLines(const ChannelMedium& m,
+                      const ExchangeElements& el,
+                      Index v,
+                      const QuadratureSettings& q,
+                      double* rowFull,
+                      double* rowFront)
+{
+  gatherVoxelLinesInto(
+    m, el, v, q, false, Vec3::Zero(), Vec3::Zero(), [&](Index e, double p, bool front) {
+      rowFull[e] += p;
+      if (front) {
+        rowFront[e] += p;
+      }
+    });
 }
 
 /// Gathers the G (rowFull) and G+ (rowFront) weights of a voxel that is not
@@ -460,6 +504,61 @@ ExchangeAreas computeExchangeAreas(const Scene& scene,
     out.quadratureError = maxChange;
   }
   progress.report(1.0);
+  return out;
+}
+
+NearField computeNearField(const Scene& scene, int channel, const QuadratureSettings& q, int radius)
+{
+  if (radius < 0) {
+    throw Error("the near-field radius must be >= 0");
+  }
+  const Grid& g = scene.grid;
+  const ChannelMedium medium(scene, channel);
+  NearField out;
+  out.radius = radius;
+  out.elements = makeExchangeElements(scene, channel);
+  if (out.elements.frontCount > 0) {
+    throw Error("the near field does not handle front sides (sigma_d, E_D) yet");
+  }
+  const ExchangeElements& el = out.elements;
+  const Index nv = g.voxelCount();
+  const int width = out.stencilSize();
+  out.stencil.assign(std::size_t(nv) * width, 0.0);
+  out.patches.assign(nv, {});
+  out.far.assign(nv, 0.0);
+  tbb::parallel_for(Index(0), nv, [&](Index v) {
+    if (el.full[v] < 0) {
+      return;
+    }
+    const auto c = g.ijk(v);
+    const Vec3 boxLo = g.voxelLower(v) - double(radius) * g.spacing;
+    const Vec3 boxHi = g.voxelLower(v) + double(radius + 1) * g.spacing;
+    double* row = out.stencil.data() + std::size_t(v) * width;
+    auto& patches = out.patches[v];
+    double sliver = 0.0;
+    const double leftover =
+      gatherVoxelLinesInto(medium, el, v, q, true, boxLo, boxHi, [&](Index e, double p, bool) {
+        if (el.isPatch(e)) {
+          const Index patch = e - el.fullCount;
+          auto it = std::find_if(
+            patches.begin(), patches.end(), [&](const auto& x) { return x.first == patch; });
+          if (it == patches.end()) {
+            patches.emplace_back(patch, p);
+          } else {
+            it->second += p;
+          }
+          return;
+        }
+        const auto u = g.ijk(el.voxelOf[e]);
+        const int dx = u[0] - c[0], dy = u[1] - c[1], dz = u[2] - c[2];
+        if (std::abs(dx) <= radius && std::abs(dy) <= radius && std::abs(dz) <= radius) {
+          row[out.offsetIndex(dx, dy, dz)] += p;
+        } else {
+          sliver += p; // a sliver past the box edge from round-off
+        }
+      });
+    out.far[v] = leftover + sliver;
+  });
   return out;
 }
 
