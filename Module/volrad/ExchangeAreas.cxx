@@ -106,21 +106,6 @@ void depositRayWeighted(const ChannelMedium& m,
   depositRay(m, el, x, d, weight, std::numeric_limits<double>::infinity(), RowSink{ rowA, rowB });
 }
 
-/// Chord length from x (on the boundary of the box [lo, lo + size]) back
-/// through the box along -d.
-double chordBack(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& size)
-{
-  double l = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] > 0.0) {
-      l = std::min(l, (x[a] - lo[a]) / d[a]);
-    } else if (d[a] < 0.0) {
-      l = std::min(l, (x[a] - lo[a] - size[a]) / d[a]);
-    }
-  }
-  return std::max(0.0, l);
-}
-
 /// Distance along d from x to the boundary of the box [lo, hi] (x inside).
 double distanceToBoxExit(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& hi)
 {
@@ -187,7 +172,7 @@ double gatherVoxelLinesInto(const ChannelMedium& m,
       fibonacciCosineHemisphere(q.voxelDirections, rng.uniform(), rng.uniform(), cosDirs);
       for (const Vec3& d0 : cosDirs) {
         const Vec3 d = frame * d0;
-        const double l = chordBack(x, d, lo, g.spacing);
+        const double l = distanceToBoxExit(x, -d, lo, lo + g.spacing); // chord back through v
         const double escape = -std::expm1(-kt * l);
         const double selfCollided = kt * l - escape;
         const bool front = selfFront >= 0 && m.normalDot(v, d) > 0.0;
