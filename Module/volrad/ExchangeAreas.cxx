@@ -106,20 +106,6 @@ void depositRayWeighted(const ChannelMedium& m,
   depositRay(m, el, x, d, weight, std::numeric_limits<double>::infinity(), RowSink{ rowA, rowB });
 }
 
-/// Distance along d from x to the boundary of the box [lo, hi] (x inside).
-double distanceToBoxExit(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& hi)
-{
-  double t = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] > 0.0) {
-      t = std::min(t, (hi[a] - x[a]) / d[a]);
-    } else if (d[a] < 0.0) {
-      t = std::min(t, (lo[a] - x[a]) / d[a]);
-    }
-  }
-  return std::max(0.0, t);
-}
-
 /// The lines leaving voxel v (kappa_t > 0), parametrised by their exit
 /// point on one of v's faces and their direction (d mu = cos(theta) dA dw);
 /// the emission of v along each is integrated exactly, 1 - exp(-kappa_t l),

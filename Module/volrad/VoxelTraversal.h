@@ -9,6 +9,7 @@
 
 #include "volrad/Grid.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -32,6 +33,20 @@ bool clipToDomain(const Grid& g,
                   double& t0,
                   double& t1,
                   Face* entry = nullptr);
+
+/// Distance along d from x (inside or on the box [lo, hi]) to the box's boundary.
+inline double distanceToBoxExit(const Vec3& x, const Vec3& d, const Vec3& lo, const Vec3& hi)
+{
+  double t = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] > 0.0) {
+      t = std::min(t, (hi[a] - x[a]) / d[a]);
+    } else if (d[a] < 0.0) {
+      t = std::min(t, (lo[a] - x[a]) / d[a]);
+    }
+  }
+  return std::max(0.0, t);
+}
 
 /// Walks the voxels along o + t d for t in [max(0, entry), tMax], calling
 /// visit(voxel, length, tStart) for each crossed voxel (zero-length pieces are

@@ -1,0 +1,90 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Cluster exchange areas against the dense solver's: the sum of S over the
+// voxel pairs of two clusters, for clusters further and further apart.
+#include "TestScenes.h"
+#include "volrad/ClusterExchange.h"
+#include "volrad/ExchangeAreas.h"
+
+#include <gtest/gtest.h>
+
+using namespace volrad;
+using namespace volrad::test;
+
+namespace {
+
+/// Mean over all cell pairs of `level` offset by `offset` cells along x of
+/// (cluster estimate, dense sum).
+std::pair<double, double> meanExchange(const Scene& s,
+                                       const ExchangeAreas& dense,
+                                       const ClusterExchange& clusters,
+                                       const VoxelPyramid& pyramid,
+                                       int level,
+                                       int offset)
+{
+  const Grid& cg = pyramid.grid(level);
+  const int size = 1 << level;
+  double estimate = 0.0, exact = 0.0;
+  for (Index a = 0; a < cg.voxelCount(); ++a) {
+    const auto ca = cg.ijk(a);
+    if (ca[0] + offset >= cg.dims[0]) {
+      continue;
+    }
+    const Index b = cg.index(ca[0] + offset, ca[1], ca[2]);
+    estimate += clusters.exchange(level, a, level, b, 1e-3);
+    const auto cb = cg.ijk(b);
+    for (Index u = 0; u < s.grid.voxelCount(); ++u) {
+      const auto cu = s.grid.ijk(u);
+      if (cu[0] / size != ca[0] || cu[1] / size != ca[1] || cu[2] / size != ca[2]) {
+        continue;
+      }
+      for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+        const auto cv = s.grid.ijk(v);
+        if (cv[0] / size == cb[0] && cv[1] / size == cb[1] && cv[2] / size == cb[2]) {
+          exact += dense.S(dense.elements.full[u], dense.elements.full[v]);
+        }
+      }
+    }
+  }
+  return { estimate, exact };
+}
+
+} // namespace
+
+TEST(ClusterExchange, EffectiveCrossSectionLimits)
+{
+  const Vec3 h(0.5, 1.0, 2.0);
+  EXPECT_NEAR(effectiveCrossSection(1e-6, h) / (1e-6 * h.prod()), 1.0, 1e-5); // thin: kappa V
+  EXPECT_NEAR(effectiveCrossSection(1e6, h), 0.5 * (0.5 + 2.0 + 1.0), 1e-9);  // thick: S / 4
+}
+
+TEST(ClusterExchange, ApproachesTheDenseSumsWithDistance)
+{
+  Scene s = cubeScene(16);
+  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0); });
+  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0, 1.0); });
+  const ProgressCallback none;
+  const ExchangeAreas dense =
+    computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(none, 0, 1));
+  const VoxelPyramid pyramid(s, 0);
+  const ClusterExchange clusters(s, 0, pyramid);
+  double previous = 1e9;
+  for (int offset : { 2, 3, 5, 7 }) {
+    const auto [estimate, exact] = meanExchange(s, dense, clusters, pyramid, 1, offset);
+    const double err = std::abs(estimate / exact - 1.0);
+    std::printf("[measured] 2^3 clusters %d cells apart: cluster S / dense S - 1 = %+.4f\n",
+                offset,
+                estimate / exact - 1.0);
+    EXPECT_LT(err, previous + 0.01);
+    previous = err;
+  }
+  EXPECT_LT(previous, 0.03);
+  for (int offset : { 2, 3 }) {
+    const auto [estimate, exact] = meanExchange(s, dense, clusters, pyramid, 2, offset);
+    std::printf("[measured] 4^3 clusters %d cells apart: cluster S / dense S - 1 = %+.4f\n",
+                offset,
+                estimate / exact - 1.0);
+    // Close, large clusters: the single centroid line misses the spread of
+    // path lengths (exp is convex), what the refinement oracle must catch.
+    EXPECT_LT(std::abs(estimate / exact - 1.0), 0.25);
+  }
+}
