@@ -59,11 +59,8 @@ void followRay(const Scene& scene,
       const double lengthWeighted = k * l > 1e-300 ? -std::expm1(-k * l) / k : l;
       const double add = w * T * lengthWeighted;
       tally.track[v] += add;
-      if (normals) {
-        const Normal& n = scene.normals[v];
-        if (n[0] * d[0] + n[1] * d[1] + n[2] * d[2] < 0.0) {
-          tally.trackFront[v] += add;
-        }
+      if (normals && scene.normalDot(v, d) < 0.0) {
+        tally.trackFront[v] += add;
       }
       T *= e;
       return T > kNegligibleTransmittance;
@@ -205,10 +202,7 @@ void addPoint(const Scene& scene,
 DirectLighting computeDirectLight(const Scene& scene, int channel, const QuadratureSettings& q)
 {
   const Grid& g = scene.grid;
-  std::vector<double> kt(std::size_t(g.voxelCount()));
-  for (Index v = 0; v < g.voxelCount(); ++v) {
-    kt[v] = scene.kappaTAt(v, channel);
-  }
+  const std::vector<double> kt = scene.extinction(channel);
   RayTally tally(g);
   for (const auto& l : scene.directionalLights) {
     addDirectional(scene, kt, l, channel, q, tally);

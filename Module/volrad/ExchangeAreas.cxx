@@ -27,17 +27,10 @@ struct ChannelMedium
 
   ChannelMedium(const Scene& s, int c)
     : scene(s)
-    , kappaT(std::size_t(s.grid.voxelCount()))
+    , kappaT(s.extinction(c))
   {
-    for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-      kappaT[v] = s.kappaTAt(v, c);
-    }
   }
-  double normalDot(Index v, const Vec3& d) const
-  {
-    const Normal& n = scene.normals[v];
-    return n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
-  }
+  double normalDot(Index v, const Vec3& d) const { return scene.normalDot(v, d); }
 };
 
 /// Follows one ray of the given weight and hands each crossed element the

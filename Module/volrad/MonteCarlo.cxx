@@ -47,11 +47,7 @@ public:
     , ch_(ch)
     , zonal_(zonal)
   {
-    const Index nv = g_.voxelCount();
-    kt_.resize(nv);
-    for (Index v = 0; v < nv; ++v) {
-      kt_[v] = s.kappaTAt(v, ch);
-    }
+    kt_ = s.extinction(ch);
     buildSources();
   }
 
@@ -203,11 +199,8 @@ private:
       const Vec3 w = ph.w;
       auto tally = [&](Index v, double l) {
         G[v] += l;
-        if (normals) {
-          const Normal& n = scene_.normals[v];
-          if (n[0] * w[0] + n[1] * w[1] + n[2] * w[2] < 0.0) {
-            Gp[v] += l;
-          }
+        if (normals && scene_.normalDot(v, w) < 0.0) {
+          Gp[v] += l;
         }
       };
       const DomainExit exit = traverseVoxels(

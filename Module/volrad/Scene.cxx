@@ -62,6 +62,15 @@ void Scene::allocate()
   }
 }
 
+std::vector<double> Scene::extinction(int c) const
+{
+  std::vector<double> kt(std::size_t(grid.voxelCount()));
+  for (Index v = 0; v < grid.voxelCount(); ++v) {
+    kt[v] = kappaTAt(v, c);
+  }
+  return kt;
+}
+
 bool Scene::hasWalls() const
 {
   for (const auto& b : boundary) {

@@ -86,6 +86,15 @@ struct Scene
     const Normal& n = normals[v];
     return n[0] != 0.f || n[1] != 0.f || n[2] != 0.f;
   }
+  /// n_v . d with the stored (not necessarily unit) normal: its sign says
+  /// whether d points to the voxel's front.
+  double normalDot(Index v, const Vec3& d) const
+  {
+    const Normal& n = normals[v];
+    return n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+  }
+  /// kappa_t of every voxel for channel c, the array the ray walks read.
+  std::vector<double> extinction(int c) const;
   Vec3 normalAt(Index v) const
   {
     const Normal& n = normals[v];
