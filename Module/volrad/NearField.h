@@ -1,37 +1,62 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /// @file NearField.h
-/// @brief Exact exchange areas between each voxel and its neighbourhood, the
-/// near and self interactions of the hierarchical solver (issue 4): the
-/// dense solver's line quadrature, with every line followed only to the
-/// boundary of the neighbourhood box (Chebyshev distance `radius` voxels).
+/// @brief Exact exchange areas between each element and its neighbourhood,
+/// the near and self interactions of the hierarchical solver: the dense
+/// solver's line quadrature, with every line followed only to the boundary
+/// of the neighbourhood box (Chebyshev distance `radius` voxels around the
+/// element's voxel; a boundary patch's voxel is the one behind it).
 ///
-/// What a line still carries when it leaves the box is the voxel's far
-/// exchange, for links between clusters to distribute; the near values plus
-/// the far weight add up to the voxel's whole row, so the split conserves
-/// energy exactly. This first version covers the full (isotropic) sides;
-/// front sides stay with the dense solver for now.
+/// All element kinds take part: full sides, front sides and boundary
+/// patches. The rows are made symmetric like the dense ones (inverse-
+/// variance weights), so the near field is reciprocal on its own. What the
+/// lines still carry when they leave the box is the element's far
+/// exchange, `far`, for the links between clusters to distribute: near
+/// values plus far weight add up to the element's whole row (4 kappa_t V,
+/// 2 kappa_t V or A), so the split conserves energy.
+///
+/// Voxels whose neighbourhood lies inside the domain and is homogeneous (one
+/// extinction, no front sides) all have the same rows up to quadrature
+/// noise; with `reuseHomogeneous` they share one, integrated with the
+/// finer `homogeneousQuadrature`: CT-like volumes of a few materials and
+/// uniform media then cost one quadrature per material.
 #pragma once
 
 #include "volrad/ExchangeAreas.h"
 
-#include <utility>
+#include <cstdint>
 #include <vector>
 
 namespace volrad {
+
+struct NearFieldOptions
+{
+  int radius = 1;
+  QuadratureSettings quadrature;
+  bool reuseHomogeneous = true;
+  QuadratureSettings homogeneousQuadrature{ 12, 16, 12, 16, 8, 64 };
+};
 
 struct NearField
 {
   int radius = 1;
   ExchangeElements elements;
-  /// Per voxel, (2 radius + 1)^3 values of S(v, v + offset), offset index
-  /// (dx + r) + (2r + 1)((dy + r) + (2r + 1)(dz + r)); zero past the domain
-  /// and for voxels with kappa_t = 0 (and for v itself if kappa_t = 0).
-  std::vector<double> stencil;
-  /// Per voxel: boundary patches reached inside the box, and S to them.
-  std::vector<std::vector<std::pair<Index, double>>> patches;
-  /// Per voxel: the exchange that leaves the box (sum of S to everything
-  /// farther than `radius`).
+  /// Full side to full side, per voxel (2 radius + 1)^3 values of
+  /// S(v, v + offset), offset index (dx + r) + (2r + 1)((dy + r) + (2r + 1)(dz + r));
+  /// zero past the domain and where either voxel has kappa_t = 0.
+  std::vector<float> stencil;
+  /// The other near pairs (a front side or a patch at one end or both), as
+  /// rows over elements: row e is [extraStart[e], extraStart[e + 1]).
+  std::vector<Index> extraStart;
+  std::vector<std::int64_t> extraColumn;
+  std::vector<float> extraValue;
+  /// Per element: its row target less its near row over the partition
+  /// (full sides and patches), >= 0: the exchange links must carry.
   std::vector<double> far;
+  /// View rows of voxels that are not elements (kappa_t = 0) but see
+  /// elements inside their box: G = row . x over element radiosities.
+  std::vector<Index> viewStart; ///< per voxel + 1
+  std::vector<std::int64_t> viewColumn;
+  std::vector<float> viewValue;
 
   int stencilSize() const { return (2 * radius + 1) * (2 * radius + 1) * (2 * radius + 1); }
   int offsetIndex(int dx, int dy, int dz) const
@@ -43,12 +68,17 @@ struct NearField
   {
     return stencil[std::size_t(v) * stencilSize() + offsetIndex(dx, dy, dz)];
   }
+  /// S(e, e), the self term.
+  double diagonal(Index e) const;
+  /// y[e] += sum over near j of S(e, j) x[j], for every element e; with
+  /// skipDiagonal the self terms are left out. Deterministic, parallel.
+  void apply(const Grid& grid, const double* x, double* y, bool skipDiagonal) const;
+  std::size_t bytes() const;
 };
 
-/// Needs a scene without front sides (sigma_d = E_D = 0) in this version.
 NearField computeNearField(const Scene& scene,
                            int channel,
-                           const QuadratureSettings& q,
-                           int radius);
+                           const NearFieldOptions& options,
+                           const ProgressRange& progress = ProgressRange());
 
 } // namespace volrad

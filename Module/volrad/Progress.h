@@ -17,6 +17,11 @@ using ProgressCallback = std::function<bool(double fraction)>;
 class ProgressRange
 {
 public:
+  /// Reports nowhere.
+  ProgressRange()
+    : ProgressRange(none(), 0.0, 1.0)
+  {
+  }
   ProgressRange(const ProgressCallback& cb, double begin, double end)
     : cb_(cb)
     , begin_(begin)
@@ -36,6 +41,11 @@ public:
   }
 
 private:
+  static const ProgressCallback& none()
+  {
+    static const ProgressCallback empty;
+    return empty;
+  }
   const ProgressCallback& cb_;
   double begin_, end_;
 };

@@ -1,0 +1,456 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/NearField.h"
+
+#include "volrad/Error.h"
+#include "volrad/LineGathering.h"
+
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+namespace volrad {
+
+namespace {
+
+using namespace detail;
+
+struct Triplet
+{
+  Index row, col;
+  double value;
+  bool mirrored = false; ///< (row, col) swapped to key an unordered pair
+};
+
+using TripletLists = tbb::combinable<std::vector<Triplet>>;
+
+std::vector<Triplet> gatherTriplets(TripletLists& lists)
+{
+  std::vector<Triplet> all;
+  lists.combine_each([&](std::vector<Triplet>& l) {
+    all.insert(all.end(), l.begin(), l.end());
+    std::vector<Triplet>().swap(l);
+  });
+  // Thread-independent order, so that sums below are deterministic.
+  std::sort(all.begin(), all.end(), [](const Triplet& a, const Triplet& b) {
+    return a.row != b.row ? a.row < b.row : a.col < b.col;
+  });
+  return all;
+}
+
+/// Whether v's box lies inside the domain and is one homogeneous medium
+/// without front sides: then its rows depend on kappa_t alone.
+bool homogeneousBox(const Grid& g,
+                    const std::vector<double>& kt,
+                    const ExchangeElements& el,
+                    Index v,
+                    int r)
+{
+  const auto c = g.ijk(v);
+  // Strictly inside: lines cut at the box never reach a boundary patch.
+  for (int a = 0; a < 3; ++a) {
+    if (c[a] - r < 1 || c[a] + r >= g.dims[a] - 1) {
+      return false;
+    }
+  }
+  for (int dz = -r; dz <= r; ++dz) {
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dx = -r; dx <= r; ++dx) {
+        const Index u = g.index(c[0] + dx, c[1] + dy, c[2] + dz);
+        if (kt[u] != kt[v] || el.front[u] >= 0) {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+double raysPerSurface(const QuadratureSettings& q, const Grid& g)
+{
+  const Vec3& h = g.spacing;
+  const double surface = 2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]);
+  return 6.0 * q.voxelPointsPerAxis * q.voxelPointsPerAxis * q.voxelDirections / surface;
+}
+
+} // namespace
+
+double NearField::diagonal(Index e) const
+{
+  if (e < elements.fullCount) {
+    return stencil[std::size_t(elements.voxelOf[e]) * stencilSize() + offsetIndex(0, 0, 0)];
+  }
+  for (Index k = extraStart[e]; k < extraStart[e + 1]; ++k) {
+    if (extraColumn[k] == e) {
+      return extraValue[k];
+    }
+  }
+  return 0.0;
+}
+
+void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagonal) const
+{
+  const ExchangeElements& el = elements;
+  const int r = radius, w = stencilSize(), centre = offsetIndex(0, 0, 0);
+  tbb::parallel_for(tbb::blocked_range<Index>(0, el.size(), 4096), [&](const auto& range) {
+    for (Index e = range.begin(); e != range.end(); ++e) {
+      double sum = 0.0;
+      if (e < el.fullCount) {
+        const Index v = el.voxelOf[e];
+        const auto c = g.ijk(v);
+        const float* row = stencil.data() + std::size_t(v) * w;
+        for (int dz = -r; dz <= r; ++dz) {
+          if (c[2] + dz < 0 || c[2] + dz >= g.dims[2]) {
+            continue;
+          }
+          for (int dy = -r; dy <= r; ++dy) {
+            if (c[1] + dy < 0 || c[1] + dy >= g.dims[1]) {
+              continue;
+            }
+            for (int dx = -r; dx <= r; ++dx) {
+              if (c[0] + dx < 0 || c[0] + dx >= g.dims[0]) {
+                continue;
+              }
+              const int o = offsetIndex(dx, dy, dz);
+              if (row[o] == 0.f || (skipDiagonal && o == centre)) {
+                continue;
+              }
+              sum += double(row[o]) * x[el.full[g.index(c[0] + dx, c[1] + dy, c[2] + dz)]];
+            }
+          }
+        }
+      }
+      for (Index k = extraStart[e]; k < extraStart[e + 1]; ++k) {
+        if (!(skipDiagonal && extraColumn[k] == e)) {
+          sum += double(extraValue[k]) * x[extraColumn[k]];
+        }
+      }
+      y[e] += sum;
+    }
+  });
+}
+
+std::size_t NearField::bytes() const
+{
+  return stencil.size() * sizeof(float) + extraStart.size() * sizeof(Index) +
+         extraColumn.size() * (sizeof(std::int64_t) + sizeof(float)) + far.size() * sizeof(double) +
+         viewStart.size() * sizeof(Index) +
+         viewColumn.size() * (sizeof(std::int64_t) + sizeof(float)) +
+         (elements.full.size() + elements.front.size() + elements.voxelOf.size()) * sizeof(Index);
+}
+
+NearField computeNearField(const Scene& scene,
+                           int channel,
+                           const NearFieldOptions& opt,
+                           const ProgressRange& progress)
+{
+  const int r = opt.radius;
+  if (r < 0) {
+    throw Error("the near-field radius must be >= 0");
+  }
+  for (const QuadratureSettings* q : { &opt.quadrature, &opt.homogeneousQuadrature }) {
+    if (q->voxelPointsPerAxis < 1 || q->voxelDirections < 1 || q->patchPointsPerAxis < 1 ||
+        q->patchDirections < 1) {
+      throw Error("quadrature settings must all be >= 1");
+    }
+  }
+  const Grid& g = scene.grid;
+  const ChannelMedium medium(scene, channel);
+  NearField out;
+  out.radius = r;
+  out.elements = makeExchangeElements(scene, channel);
+  const ExchangeElements& el = out.elements;
+  const Index nv = g.voxelCount(), n = el.size();
+  const int width = out.stencilSize();
+  out.stencil.assign(std::size_t(nv) * width, 0.f);
+
+  // Voxels sharing one homogeneous neighbourhood share one row.
+  std::vector<std::int32_t> shared(opt.reuseHomogeneous ? nv : 0, -1);
+  std::vector<Index> representatives;
+  if (opt.reuseHomogeneous) {
+    std::map<double, std::int32_t> byKappa;
+    for (Index v = 0; v < nv; ++v) {
+      if (el.full[v] >= 0 && homogeneousBox(g, medium.kappaT, el, v, r)) {
+        auto [it, added] = byKappa.emplace(medium.kappaT[v], std::int32_t(representatives.size()));
+        if (added) {
+          representatives.push_back(v);
+        }
+        shared[v] = it->second;
+      }
+    }
+  }
+  std::vector<double> sharedRows(representatives.size() * width, 0.0);
+  tbb::parallel_for(Index(0), Index(representatives.size()), [&](Index k) {
+    const Index v = representatives[k];
+    const auto c = g.ijk(v);
+    double* row = sharedRows.data() + k * width;
+    gatherVoxelLinesInto(medium,
+                         el,
+                         v,
+                         opt.homogeneousQuadrature,
+                         neighbourhood(g, v, r),
+                         [&](Index e, double p, bool) {
+                           if (el.isPatch(e) || el.isFront(e)) {
+                             return; // not in a homogeneous box
+                           }
+                           const auto u = g.ijk(el.voxelOf[e]);
+                           const int dx = u[0] - c[0], dy = u[1] - c[1], dz = u[2] - c[2];
+                           if (std::max({ std::abs(dx), std::abs(dy), std::abs(dz) }) <= r) {
+                             row[out.offsetIndex(dx, dy, dz)] += p;
+                           }
+                         });
+  });
+  progress.report(0.05);
+
+  // Raw voxel rows: full-full into the stencil, the rest as triplets.
+  TripletLists extras;
+  const Index block = std::max<Index>(4096, nv / 50);
+  for (Index b0 = 0; b0 < nv; b0 += block) {
+    const Index b1 = std::min(nv, b0 + block);
+    tbb::parallel_for(
+      tbb::blocked_range<Index>(b0, b1), [&](const tbb::blocked_range<Index>& range) {
+        std::vector<double> row(width);
+        auto& local = extras.local();
+        for (Index v = range.begin(); v != range.end(); ++v) {
+          const Index self = el.full[v];
+          if (self < 0) {
+            continue;
+          }
+          float* dst = out.stencil.data() + std::size_t(v) * width;
+          if (!shared.empty() && shared[v] >= 0) {
+            const double* src = sharedRows.data() + std::size_t(shared[v]) * width;
+            for (int o = 0; o < width; ++o) {
+              dst[o] = float(src[o]);
+            }
+            continue;
+          }
+          std::fill(row.begin(), row.end(), 0.0);
+          const auto c = g.ijk(v);
+          const Index selfFront = el.front[v];
+          const std::size_t first = local.size();
+          gatherVoxelLinesInto(medium,
+                               el,
+                               v,
+                               opt.quadrature,
+                               neighbourhood(g, v, r),
+                               [&](Index e, double p, bool front) {
+                                 const auto u = g.ijk(el.isPatch(e) ? g.patchVoxel(e - el.fullCount)
+                                                                    : el.voxelOf[e]);
+                                 const int dx = u[0] - c[0], dy = u[1] - c[1], dz = u[2] - c[2];
+                                 if (std::max({ std::abs(dx), std::abs(dy), std::abs(dz) }) > r) {
+                                   return; // a sliver past the box edge from round-off: far
+                                 }
+                                 if (front) {
+                                   local.push_back({ selfFront, e, p });
+                                 }
+                                 if (el.isPatch(e) || el.isFront(e)) {
+                                   local.push_back({ self, e, p });
+                                 } else {
+                                   row[out.offsetIndex(dx, dy, dz)] += p;
+                                 }
+                               });
+          for (int o = 0; o < width; ++o) {
+            dst[o] = float(row[o]);
+          }
+          // Merge this voxel's repeated triplets.
+          std::sort(local.begin() + first, local.end(), [](const Triplet& a, const Triplet& b) {
+            return a.row != b.row ? a.row < b.row : a.col < b.col;
+          });
+          std::size_t out_ = first;
+          for (std::size_t k = first; k < local.size(); ++k) {
+            if (out_ > first && local[out_ - 1].row == local[k].row &&
+                local[out_ - 1].col == local[k].col) {
+              local[out_ - 1].value += local[k].value;
+            } else {
+              local[out_++] = local[k];
+            }
+          }
+          local.resize(out_);
+        }
+      });
+    progress.report(0.05 + 0.75 * double(b1) / double(nv));
+  }
+
+  // Patch rows, cut at the box around the voxel behind each patch.
+  const Index np = el.patchCount;
+  tbb::parallel_for(Index(0), np, [&](Index p) {
+    auto& local = extras.local();
+    std::map<Index, double> row;
+    const auto c = g.ijk(g.patchVoxel(p));
+    gatherPatch(
+      medium, el, p, opt.quadrature, neighbourhood(g, g.patchVoxel(p), r), [&](Index e, double w) {
+        const auto u = g.ijk(el.isPatch(e) ? g.patchVoxel(e - el.fullCount) : el.voxelOf[e]);
+        if (std::max({ std::abs(u[0] - c[0]), std::abs(u[1] - c[1]), std::abs(u[2] - c[2]) }) <=
+            r) {
+          row[e] += w;
+        }
+      });
+    for (const auto& [e, w] : row) {
+      local.push_back({ el.patchElement(p), e, w });
+    }
+  });
+  progress.report(0.85);
+
+  // Reciprocity: weights by each row's rays per unit of emitting surface.
+  const double uVoxel = raysPerSurface(opt.quadrature, g);
+  const double uShared = raysPerSurface(opt.homogeneousQuadrature, g);
+  const double patchRays = double(opt.quadrature.patchPointsPerAxis) *
+                           opt.quadrature.patchPointsPerAxis * opt.quadrature.patchDirections;
+  auto weight = [&](Index e) {
+    if (el.isPatch(e)) {
+      return patchRays / g.patchArea(g.patchLocation(e - el.fullCount).face);
+    }
+    const Index v = el.voxelOf[e];
+    return (!shared.empty() && shared[v] >= 0) ? uShared : uVoxel;
+  };
+  // Full-full pairs: each unordered pair is owned by its lower voxel.
+  tbb::parallel_for(Index(0), nv, [&](Index v) {
+    if (el.full[v] < 0) {
+      return;
+    }
+    const auto c = g.ijk(v);
+    const double wv = weight(el.full[v]);
+    for (int o = out.offsetIndex(0, 0, 0) + 1; o < width; ++o) {
+      const int w2 = 2 * r + 1;
+      const int dx = o % w2 - r, dy = (o / w2) % w2 - r, dz = o / (w2 * w2) - r;
+      const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
+      if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
+        continue;
+      }
+      const Index u = g.index(i, j, k);
+      if (el.full[u] < 0) {
+        continue;
+      }
+      const double wu = weight(el.full[u]);
+      float& a = out.stencil[std::size_t(v) * width + o];
+      float& b = out.stencil[std::size_t(u) * width + out.offsetIndex(-dx, -dy, -dz)];
+      const float s = float((wv * double(a) + wu * double(b)) / (wv + wu));
+      a = s;
+      b = s;
+    }
+  });
+
+  // The other pairs: combine (a, b) with (b, a), then both directions.
+  std::vector<Triplet> raw = gatherTriplets(extras);
+  for (Triplet& t : raw) {
+    // Key the unordered pair by its lower element; remember the direction.
+    if (t.row > t.col) {
+      std::swap(t.row, t.col);
+      t.mirrored = true;
+    }
+  }
+  std::sort(raw.begin(), raw.end(), [](const Triplet& a, const Triplet& b) {
+    return a.row != b.row ? a.row < b.row : a.col < b.col;
+  });
+  std::vector<Triplet> sym;
+  for (std::size_t k = 0; k < raw.size();) {
+    const Index a = raw[k].row, b = raw[k].col;
+    double ab = 0.0, ba = 0.0;
+    for (; k < raw.size() && raw[k].row == a && raw[k].col == b; ++k) {
+      if (raw[k].mirrored) {
+        ba += raw[k].value;
+      } else {
+        ab += raw[k].value;
+      }
+    }
+    const double wa = weight(a), wb = weight(b);
+    const double s = a == b ? ab : (wa * ab + wb * ba) / (wa + wb);
+    if (s != 0.0) {
+      sym.push_back({ a, b, s });
+      if (a != b) {
+        sym.push_back({ b, a, s });
+      }
+    }
+  }
+  std::vector<Triplet>().swap(raw);
+  std::sort(sym.begin(), sym.end(), [](const Triplet& x, const Triplet& y) {
+    return x.row != y.row ? x.row < y.row : x.col < y.col;
+  });
+  out.extraStart.assign(n + 1, 0);
+  out.extraColumn.resize(sym.size());
+  out.extraValue.resize(sym.size());
+  for (std::size_t k = 0; k < sym.size(); ++k) {
+    ++out.extraStart[sym[k].row + 1];
+    out.extraColumn[k] = sym[k].col;
+    out.extraValue[k] = float(sym[k].value);
+  }
+  for (Index e = 0; e < n; ++e) {
+    out.extraStart[e + 1] += out.extraStart[e];
+  }
+
+  // Far weights: what each row's near part leaves of its target.
+  out.far.assign(n, 0.0);
+  tbb::parallel_for(Index(0), n, [&](Index e) {
+    double nearSum = 0.0;
+    if (e < el.fullCount) {
+      const float* row = out.stencil.data() + std::size_t(el.voxelOf[e]) * width;
+      for (int o = 0; o < width; ++o) {
+        nearSum += row[o];
+      }
+    }
+    for (Index k = out.extraStart[e]; k < out.extraStart[e + 1]; ++k) {
+      if (!el.isFront(out.extraColumn[k])) {
+        nearSum += out.extraValue[k];
+      }
+    }
+    out.far[e] = std::max(0.0, exchangeRowTarget(scene, channel, el, e) - nearSum);
+  });
+  progress.report(0.9);
+
+  // Views of the empty voxels next to elements.
+  TripletLists views;
+  const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
+  tbb::parallel_for(Index(0), nv, [&](Index v) {
+    if (el.full[v] >= 0) {
+      return;
+    }
+    const auto c = g.ijk(v);
+    bool seesSomething = false;
+    for (int dz = -r; dz <= r && !seesSomething; ++dz) {
+      for (int dy = -r; dy <= r && !seesSomething; ++dy) {
+        for (int dx = -r; dx <= r && !seesSomething; ++dx) {
+          const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
+          if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
+            seesSomething = true; // a patch
+          } else {
+            seesSomething = el.full[g.index(i, j, k)] >= 0;
+          }
+        }
+      }
+    }
+    if (!seesSomething) {
+      return;
+    }
+    std::map<Index, double> row;
+    gatherVoxelView(medium,
+                    el,
+                    v,
+                    viewDirs,
+                    opt.quadrature,
+                    false,
+                    neighbourhood(g, v, r),
+                    [&](Index e, double p, bool) { row[e] += p; });
+    auto& local = views.local();
+    for (const auto& [e, w] : row) {
+      local.push_back({ v, e, w });
+    }
+  });
+  const std::vector<Triplet> viewRows = gatherTriplets(views);
+  out.viewStart.assign(nv + 1, 0);
+  out.viewColumn.resize(viewRows.size());
+  out.viewValue.resize(viewRows.size());
+  for (std::size_t k = 0; k < viewRows.size(); ++k) {
+    ++out.viewStart[viewRows[k].row + 1];
+    out.viewColumn[k] = viewRows[k].col;
+    out.viewValue[k] = float(viewRows[k].value);
+  }
+  for (Index v = 0; v < nv; ++v) {
+    out.viewStart[v + 1] += out.viewStart[v];
+  }
+  progress.report(1.0);
+  return out;
+}
+
+} // namespace volrad
