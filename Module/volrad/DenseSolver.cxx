@@ -5,6 +5,7 @@
 #include "volrad/EnergyBalance.h"
 #include "volrad/ExchangeAreas.h"
 #include "volrad/Sampling.h"
+#include "volrad/ZonalSystem.h"
 
 #include <Eigen/Dense>
 #include <Eigen/IterativeLinearSolvers>
@@ -18,51 +19,6 @@ namespace volrad {
 
 namespace {
 
-struct ChannelSystem
-{
-  Eigen::VectorXd e, c, D; // x = e + c .* (S x + D)
-};
-
-ChannelSystem buildSystem(const Scene& scene,
-                          int ch,
-                          const ExchangeElements& el,
-                          const DirectLighting& dl)
-{
-  const Grid& g = scene.grid;
-  const Index n = el.size();
-  const double V = g.voxelVolume();
-  ChannelSystem sys{ Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n) };
-  for (Index v = 0; v < g.voxelCount(); ++v) {
-    const Index i = el.full[v];
-    if (i < 0) {
-      continue;
-    }
-    const double kt = scene.kappaTAt(v, ch), ka = scene.kappaAAt(v, ch);
-    sys.e[i] = ka * scene.emissionIAt(v, ch) / kt;
-    sys.c[i] = scene.sigmaIAt(v, ch) / (4.0 * kt * kt * V);
-    sys.D[i] = kt * dl.track[v];
-    const Index f = el.front[v];
-    if (f >= 0) {
-      sys.e[f] = ka * scene.emissionDAt(v, ch) / kt;
-      sys.c[f] = scene.sigmaDAt(v, ch) / (2.0 * kt * kt * V);
-      sys.D[f] = kt * dl.trackFront[v];
-    }
-  }
-  for (Index p = 0; p < el.patchCount; ++p) {
-    const Index k = el.patchElement(p);
-    const Face face = g.patchLocation(p).face;
-    const BoundaryCondition& bc = scene.boundary[static_cast<int>(face)];
-    sys.D[k] = dl.patchPower[p];
-    if (bc.type == BoundaryCondition::Type::Wall) {
-      sys.e[k] = bc.emission[ch];
-      sys.c[k] = bc.reflectance[ch] / g.patchArea(face);
-    } else {
-      sys.e[k] = kPi * bc.radiance[ch];
-    }
-  }
-  return sys;
-}
-
 struct LinearSolveResult
 {
   Eigen::VectorXd x;
@@ -71,7 +27,7 @@ struct LinearSolveResult
 };
 
 LinearSolveResult solveSystem(const RowMatrix& S,
-                              const ChannelSystem& sys,
+                              const ZonalSystem& sys,
                               const DenseSolverOptions& opt)
 {
   const Index n = S.rows();
@@ -204,17 +160,8 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
   }
   const Grid& g = scene.grid;
   const int C = scene.channels;
-  const Index nv = g.voxelCount(), np = g.patchCount();
-  Solution sol;
-  sol.channels = C;
-  for (auto* a : { &sol.G, &sol.Gplus, &sol.QI, &sol.QD, &sol.absorbed }) {
-    a->assign(std::size_t(nv) * C, 0.0);
-  }
-  sol.B.assign(std::size_t(np) * C, 0.0);
-  sol.H.assign(std::size_t(np) * C, 0.0);
-  sol.energy.resize(C);
-  sol.stats.method = "dense";
-  sol.stats.converged = true;
+
+  Solution sol = emptySolution(scene, "dense");
   sol.stats.estimatedBytes = std::size_t(bytes);
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
@@ -239,7 +186,7 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
     arena.execute([&] { dl = computeDirectLight(scene, ch, options.quadrature); });
     chProgress.report(0.85);
     const ExchangeElements& el = ex->elements;
-    const ChannelSystem sys = buildSystem(scene, ch, el, dl);
+    const ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
     LinearSolveResult lin;
     arena.execute([&] { lin = solveSystem(ex->S, sys, options); });
     chProgress.report(0.95);
@@ -248,29 +195,17 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
     const Eigen::VectorXd x = lin.x;
     const Eigen::VectorXd collided = ex->S * x + sys.D;
 
-    for (Index v = 0; v < nv; ++v) {
-      const std::size_t o = std::size_t(v) * C + ch;
-      const double kt = scene.kappaTAt(v, ch);
-      if (el.full[v] >= 0) {
-        sol.G[o] = collided[el.full[v]] / (kt * V);
-        sol.QI[o] = x[el.full[v]];
-      } else {
-        sol.G[o] = ex->gatherRows.row(ex->gatherFullRow[v]).dot(x) + dl.track[v] / V;
-      }
-      if (el.front[v] >= 0) {
-        sol.Gplus[o] = collided[el.front[v]] / (kt * V);
-        sol.QD[o] = x[el.front[v]];
-      } else if (ex->gatherFrontRow[v] >= 0) {
-        sol.Gplus[o] = ex->gatherRows.row(ex->gatherFrontRow[v]).dot(x) + dl.trackFront[v] / V;
-      }
-      sol.absorbed[o] =
-        scene.kappaAAt(v, ch) * sol.G[o] + scene.sigmaDAt(v, ch) * (sol.G[o] - sol.Gplus[o]);
-    }
-    for (Index p = 0; p < np; ++p) {
-      const std::size_t o = std::size_t(p) * C + ch;
-      sol.B[o] = x[el.patchElement(p)];
-      sol.H[o] = collided[el.patchElement(p)] / g.patchArea(g.patchLocation(p).face);
-    }
+    storeChannelFields(
+      scene,
+      ch,
+      el,
+      x,
+      collided,
+      [&](Index v) { return ex->gatherRows.row(ex->gatherFullRow[v]).dot(x) + dl.track[v] / V; },
+      [&](Index v) {
+        return ex->gatherRows.row(ex->gatherFrontRow[v]).dot(x) + dl.trackFront[v] / V;
+      },
+      sol);
     sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
   }
   progress.report(1.0);

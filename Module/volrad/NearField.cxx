@@ -395,7 +395,9 @@ NearField computeNearField(const Scene& scene,
         nearSum += out.extraValue[k];
       }
     }
-    out.far[e] = std::max(0.0, exchangeRowTarget(scene, channel, el, e) - nearSum);
+    // Not clamped: where quadrature noise puts the near sum over the target, a
+    // slightly negative far weight keeps the row exact.
+    out.far[e] = exchangeRowTarget(scene, channel, el, e) - nearSum;
   });
   progress.report(0.9);
 

@@ -85,16 +85,7 @@ void expectAgreement(const char* name, const Scene& s, long long photons)
 
 TEST(MonteCarloAgreement, SurfaceLikeScatteringWithDirectionalLight)
 {
-  Scene s = cubeScene(8);
-  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.1, 2.0); });
-  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0, 0.9); });
-  // A surface-like shell around the centre, normals pointing outwards.
-  fill(s, s.sigmaD, 0, [](const Vec3& x) {
-    const double r = (x - Vec3::Constant(0.5)).norm();
-    return (r > 0.25 && r < 0.4) ? 6.0 : 0.0;
-  });
-  radialNormals(s);
-  s.directionalLights.push_back({ Vec3(0.3, -0.5, -1.0), uniformChannels(2.0) });
+  const Scene s = shellTestScene(8);
   expectAgreement("sigma_d shell + sun", s, 6000000);
 }
 
@@ -103,31 +94,14 @@ TEST(MonteCarloAgreement, ReflectingWallsPointLightAndSky)
   Scene s = cubeScene(8);
   fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.05, 1.0, 0.3); });
   fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 1.0, 6.0, 2.1); });
-  BoundaryCondition wall;
-  wall.type = BoundaryCondition::Type::Wall;
-  wall.reflectance = uniformChannels(0.6);
-  s.boundary[static_cast<int>(Face::ZMin)] = wall;
-  s.boundary[static_cast<int>(Face::XMin)] = wall;
-  wall.reflectance = uniformChannels(0.3);
-  wall.emission = uniformChannels(0.5);
-  s.boundary[static_cast<int>(Face::YMax)] = wall;
-  s.boundary[static_cast<int>(Face::ZMax)].radiance = uniformChannels(0.2);
+  addMixedBoundary(s);
   s.pointLights.push_back({ Vec3(0.45, 0.55, 0.6), uniformChannels(0.3) });
   expectAgreement("walls + point light + sky", s, 3000000);
 }
 
 TEST(MonteCarloAgreement, RgbMediumWithSunAndEmission)
 {
-  Scene s = cubeScene(8, 3);
-  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    const Vec3 x = s.grid.voxelCentre(v);
-    for (int c = 0; c < 3; ++c) {
-      s.kappaA[v * 3 + c] = float(lumpy(x, 0.1, 1.5 + c, 0.5 * c));
-      s.sigmaI[v * 3 + c] = float(lumpy(x, 0.5, 5.0 - c, 1.0 + c));
-      s.emissionI[v * 3 + c] = float(x[2] < 0.3 ? 0.5 * (c + 1) : 0.0);
-    }
-  }
-  s.directionalLights.push_back({ Vec3(-1.0, 0.2, -0.4), { 1.0, 0.8, 0.5 } });
+  const Scene s = rgbTestScene(8);
   expectAgreement("RGB medium + sun + emission", s, 2000000);
 }
 

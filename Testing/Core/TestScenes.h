@@ -51,6 +51,53 @@ inline void radialNormals(Scene& s)
   }
 }
 
+/// Two reflecting walls, an emitting one and a faint sky on the top face.
+inline void addMixedBoundary(Scene& s)
+{
+  BoundaryCondition wall;
+  wall.type = BoundaryCondition::Type::Wall;
+  wall.reflectance = uniformChannels(0.6);
+  s.boundary[static_cast<int>(Face::ZMin)] = wall;
+  s.boundary[static_cast<int>(Face::XMin)] = wall;
+  wall.reflectance = uniformChannels(0.3);
+  wall.emission = uniformChannels(0.5);
+  s.boundary[static_cast<int>(Face::YMax)] = wall;
+  s.boundary[static_cast<int>(Face::ZMax)].radiance = uniformChannels(0.2);
+}
+
+/// A scattering medium with a surface-like shell around the centre (normals
+/// pointing outwards), lit by a sun.
+inline Scene shellTestScene(int n)
+{
+  Scene s = cubeScene(n);
+  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.1, 2.0); });
+  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0, 0.9); });
+  fill(s, s.sigmaD, 0, [](const Vec3& x) {
+    const double r = (x - Vec3::Constant(0.5)).norm();
+    return (r > 0.25 && r < 0.4) ? 6.0 : 0.0;
+  });
+  radialNormals(s);
+  s.directionalLights.push_back({ Vec3(0.3, -0.5, -1.0), uniformChannels(2.0) });
+  return s;
+}
+
+/// An RGB medium, every coefficient differing per channel, with an emitting
+/// bottom layer and a sun.
+inline Scene rgbTestScene(int n)
+{
+  Scene s = cubeScene(n, 3);
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    const Vec3 x = s.grid.voxelCentre(v);
+    for (int c = 0; c < 3; ++c) {
+      s.kappaA[v * 3 + c] = float(lumpy(x, 0.1, 1.5 + c, 0.5 * c));
+      s.sigmaI[v * 3 + c] = float(lumpy(x, 0.5, 5.0 - c, 1.0 + c));
+      s.emissionI[v * 3 + c] = float(x[2] < 0.3 ? 0.5 * (c + 1) : 0.0);
+    }
+  }
+  s.directionalLights.push_back({ Vec3(-1.0, 0.2, -0.4), { 1.0, 0.8, 0.5 } });
+  return s;
+}
+
 inline void setAllFaces(Scene& s, const BoundaryCondition& bc)
 {
   for (auto& b : s.boundary) {

@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/ClusterTree.h"
+
+#include "volrad/ClusterExchange.h"
+
+#include <algorithm>
+
+namespace volrad {
+
+ClusterTree::ClusterTree(const Scene& scene, int channel, const VoxelPyramid& pyramid)
+  : pyramid_(pyramid)
+{
+  for (int l = 0; l < pyramid.levels(); ++l) {
+    grids_.push_back(pyramid.grid(l));
+  }
+  const int L = levels();
+  voxelOffset_.assign(L + 1, 0);
+  for (int l = 0; l < L; ++l) {
+    voxelOffset_[l + 1] = voxelOffset_[l] + grids_[l].voxelCount();
+  }
+  patchOffset_.assign(L + 1, voxelOffset_[L]);
+  for (int l = 0; l < L; ++l) {
+    patchOffset_[l + 1] = patchOffset_[l] + grids_[l].patchCount();
+  }
+
+  const Grid& g = grids_[0];
+  voxelSigma_.resize(g.voxelCount());
+  for (Index v = 0; v < g.voxelCount(); ++v) {
+    voxelSigma_[v] = float(effectiveCrossSection(scene.kappaTAt(v, channel), g.spacing));
+  }
+  sigma_.resize(L);
+  centroid_.resize(L);
+  for (int l = 1; l < L; ++l) {
+    const Grid& coarse = grids_[l];
+    sigma_[l].assign(coarse.voxelCount(), 0.0);
+    centroid_[l].assign(coarse.voxelCount(), Vec3::Zero());
+    for (Index c = 0; c < coarse.voxelCount(); ++c) {
+      std::array<Index, 8> kids;
+      const int n = children(voxelNode(l, c), kids);
+      double s = 0.0;
+      Vec3 m = Vec3::Zero();
+      for (int k = 0; k < n; ++k) {
+        const double sk = sigma(kids[k]);
+        s += sk;
+        m += sk * centroid(kids[k]);
+      }
+      sigma_[l][c] = s;
+      if (s > 0.0) {
+        centroid_[l][c] = m / s;
+      } else { // empty: the middle of the voxels it covers
+        std::array<int, 3> lo, hi;
+        box(voxelNode(l, c), lo, hi);
+        for (int a = 0; a < 3; ++a) {
+          centroid_[l][c][a] = g.origin[a] + 0.5 * (lo[a] + hi[a]) * g.spacing[a];
+        }
+      }
+    }
+  }
+  patchArea_.resize(L);
+  patchCentroid_.resize(L);
+  patchArea_[0].resize(g.patchCount());
+  patchCentroid_[0].resize(g.patchCount());
+  for (Index p = 0; p < g.patchCount(); ++p) {
+    patchArea_[0][p] = g.patchArea(g.patchLocation(p).face);
+    patchCentroid_[0][p] = g.patchCentre(p);
+  }
+  for (int l = 1; l < L; ++l) {
+    patchArea_[l].assign(grids_[l].patchCount(), 0.0);
+    patchCentroid_[l].assign(grids_[l].patchCount(), Vec3::Zero());
+    for (Index p = 0; p < grids_[l].patchCount(); ++p) {
+      std::array<Index, 8> kids;
+      const int n = children(patchNode(l, p), kids);
+      double a = 0.0;
+      Vec3 m = Vec3::Zero();
+      for (int k = 0; k < n; ++k) {
+        const Index kc = cell(kids[k]);
+        a += patchArea_[l - 1][kc];
+        m += patchArea_[l - 1][kc] * patchCentroid_[l - 1][kc];
+      }
+      patchArea_[l][p] = a;
+      patchCentroid_[l][p] = m / a;
+    }
+  }
+}
+
+int ClusterTree::level(Index node) const
+{
+  const auto& off = isPatch(node) ? patchOffset_ : voxelOffset_;
+  int l = 0;
+  while (node >= off[l + 1]) {
+    ++l;
+  }
+  return l;
+}
+
+std::vector<Index> ClusterTree::roots() const
+{
+  const int top = levels() - 1;
+  std::vector<Index> r{ voxelNode(top, 0) };
+  for (Index p = 0; p < grids_[top].patchCount(); ++p) {
+    r.push_back(patchNode(top, p));
+  }
+  return r;
+}
+
+int ClusterTree::children(Index node, std::array<Index, 8>& out) const
+{
+  const int l = level(node);
+  if (l == 0) {
+    return 0;
+  }
+  const Grid& fine = grids_[l - 1];
+  const Index c = cell(node);
+  int n = 0;
+  if (!isPatch(node)) {
+    const auto ijk = grids_[l].ijk(c);
+    for (int k = 0; k < 8; ++k) {
+      const int i = 2 * ijk[0] + (k & 1), j = 2 * ijk[1] + ((k >> 1) & 1),
+                m = 2 * ijk[2] + (k >> 2);
+      if (i < fine.dims[0] && j < fine.dims[1] && m < fine.dims[2]) {
+        out[n++] = voxelNode(l - 1, fine.index(i, j, m));
+      }
+    }
+    return n;
+  }
+  const PatchLocation loc = grids_[l].patchLocation(c);
+  const auto ax = faceAxesInPlane(loc.face);
+  for (int k = 0; k < 4; ++k) {
+    const int a = 2 * loc.a + (k & 1), b = 2 * loc.b + (k >> 1);
+    if (a < fine.dims[ax[0]] && b < fine.dims[ax[1]]) {
+      out[n++] = patchNode(l - 1, fine.patchIndex(loc.face, a, b));
+    }
+  }
+  return n;
+}
+
+double ClusterTree::sigma(Index node) const
+{
+  const int l = level(node);
+  if (isPatch(node)) {
+    return patchArea_[l][cell(node)];
+  }
+  return l == 0 ? double(voxelSigma_[node]) : sigma_[l][cell(node)];
+}
+
+Vec3 ClusterTree::centroid(Index node) const
+{
+  const int l = level(node);
+  if (isPatch(node)) {
+    return patchCentroid_[l][cell(node)];
+  }
+  return l == 0 ? grids_[0].voxelCentre(node) : centroid_[l][cell(node)];
+}
+
+double ClusterTree::radius(Index node) const
+{
+  std::array<int, 3> lo, hi;
+  box(node, lo, hi);
+  Vec3 extent;
+  for (int a = 0; a < 3; ++a) {
+    extent[a] = (hi[a] - lo[a] + 1) * grids_[0].spacing[a];
+  }
+  if (isPatch(node)) {
+    extent[faceAxis(face(node))] = 0.0;
+  }
+  return 0.5 * extent.norm();
+}
+
+double ClusterTree::meanKappaT(Index node) const
+{
+  return isPatch(node) ? 0.0 : pyramid_.meanKappaT(level(node), cell(node));
+}
+
+Face ClusterTree::face(Index node) const
+{
+  return grids_[level(node)].patchLocation(cell(node)).face;
+}
+
+void ClusterTree::box(Index node, std::array<int, 3>& lo, std::array<int, 3>& hi) const
+{
+  const int l = level(node);
+  const int s = 1 << l;
+  const auto& dims = grids_[0].dims;
+  if (!isPatch(node)) {
+    const auto c = grids_[l].ijk(cell(node));
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = c[a] * s;
+      hi[a] = std::min(lo[a] + s - 1, dims[a] - 1);
+    }
+    return;
+  }
+  const PatchLocation loc = grids_[l].patchLocation(cell(node));
+  const auto ax = faceAxesInPlane(loc.face);
+  const int n = faceAxis(loc.face);
+  lo[ax[0]] = loc.a * s;
+  hi[ax[0]] = std::min(lo[ax[0]] + s - 1, dims[ax[0]] - 1);
+  lo[ax[1]] = loc.b * s;
+  hi[ax[1]] = std::min(lo[ax[1]] + s - 1, dims[ax[1]] - 1);
+  lo[n] = hi[n] = faceIsMax(loc.face) ? dims[n] - 1 : 0;
+}
+
+int ClusterTree::gap(Index a, Index b) const
+{
+  std::array<int, 3> la, ha, lb, hb;
+  box(a, la, ha);
+  box(b, lb, hb);
+  int g = 0;
+  for (int k = 0; k < 3; ++k) {
+    g = std::max({ g, lb[k] - ha[k], la[k] - hb[k] });
+  }
+  return g;
+}
+
+std::size_t ClusterTree::bytes() const
+{
+  std::size_t b = voxelSigma_.size() * sizeof(float);
+  for (int l = 0; l < levels(); ++l) {
+    b += sigma_[l].size() * sizeof(double) + centroid_[l].size() * sizeof(Vec3) +
+         patchArea_[l].size() * sizeof(double) + patchCentroid_[l].size() * sizeof(Vec3);
+  }
+  return b;
+}
+
+} // namespace volrad

@@ -1,0 +1,233 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/FarField.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+namespace volrad {
+
+namespace {
+
+Vec3 unitNormal(const Scene& s, Index v)
+{
+  const Vec3 n = s.normalAt(v);
+  const double l = n.norm();
+  return l > 0.0 ? Vec3(n / l) : Vec3::Zero();
+}
+
+template<class F>
+void forEach(Index n, F&& f)
+{
+  tbb::parallel_for(tbb::blocked_range<Index>(0, n, 2048), [&](const auto& r) {
+    for (Index i = r.begin(); i != r.end(); ++i) {
+      f(i);
+    }
+  });
+}
+
+/// f(node) for every voxel node and patch node of one level, in parallel.
+template<class F>
+void forEachNodeOfLevel(const ClusterTree& t, int level, F&& f)
+{
+  forEach(t.grid(level).voxelCount(), [&](Index c) { f(t.voxelNode(level, c), false); });
+  forEach(t.grid(level).patchCount(), [&](Index c) { f(t.patchNode(level, c), true); });
+}
+
+} // namespace
+
+FarField::FarField(const Scene& scene,
+                   const ClusterTree& tree,
+                   const LinkSet& links,
+                   const NearField& near)
+  : scene_(scene)
+  , tree_(tree)
+  , links_(links)
+  , el_(near.elements)
+  , fronts_(near.elements.frontCount > 0)
+{
+  const Index nodes = tree.size();
+  emit_.assign(nodes, 0.0);
+  phi_.assign(nodes, 0.0);
+  if (fronts_) {
+    frontEmit_.assign(nodes, 0.0);
+    frontMoment_.assign(nodes, Vec3::Zero());
+    psi_.assign(nodes, Vec3::Zero());
+    leafDirect_.assign(tree.grid(0).voxelCount(), 0.0);
+    leafFront_.assign(tree.grid(0).voxelCount(), 0.0);
+  }
+  // Radiosity 1 on the partition: each element's far column sum.
+  const Index n = el_.size();
+  std::vector<double> ones(n, 0.0), received(n, 0.0);
+  std::fill(ones.begin(), ones.begin() + el_.partitionSize(), 1.0);
+  gather(ones.data(), received.data(), nullptr, false);
+  scale_.assign(n, 1.0);
+  for (Index e = 0; e < n; ++e) {
+    if (received[e] > 0.0) {
+      scale_[e] = near.far[e] / received[e];
+    }
+  }
+}
+
+void FarField::apply(const double* x, double* y, double* viewOut) const
+{
+  gather(x, y, viewOut, true);
+}
+
+void FarField::gather(const double* x, double* y, double* viewOut, bool normalised) const
+{
+  const Grid& g = tree_.grid(0);
+  const Index nv = g.voxelCount(), np = g.patchCount();
+  const int L = tree_.levels();
+
+  // Pull: the elements' emission per unit gamma, summed up the tree.
+  forEach(nv, [&](Index v) {
+    const Index e = el_.full[v];
+    emit_[v] = e >= 0 ? tree_.sigma(v) * x[e] : 0.0;
+    if (fronts_) {
+      const Index f = el_.front[v];
+      frontEmit_[v] = f >= 0 ? tree_.sigma(v) * x[f] : 0.0;
+      frontMoment_[v] =
+        frontEmit_[v] != 0.0 ? Vec3(frontEmit_[v] * unitNormal(scene_, v)) : Vec3::Zero();
+    }
+  });
+  forEach(np, [&](Index p) {
+    emit_[tree_.patchNode(0, p)] = tree_.sigma(tree_.patchNode(0, p)) * x[el_.patchElement(p)];
+  });
+  for (int l = 1; l < L; ++l) {
+    {
+      forEachNodeOfLevel(tree_, l, [&](Index node, bool patches) {
+        std::array<Index, 8> kids;
+        const int k = tree_.children(node, kids);
+        double s = 0.0, d = 0.0;
+        Vec3 m = Vec3::Zero();
+        for (int i = 0; i < k; ++i) {
+          s += emit_[kids[i]];
+          if (fronts_ && !patches) {
+            d += frontEmit_[kids[i]];
+            m += frontMoment_[kids[i]];
+          }
+        }
+        emit_[node] = s;
+        if (fronts_ && !patches) {
+          frontEmit_[node] = d;
+          frontMoment_[node] = m;
+        }
+      });
+    }
+  }
+
+  // Gather over the links, per receiving node.
+  forEach(tree_.size(), [&](Index b) {
+    const bool patchB = tree_.isPatch(b), leafB = tree_.isLeaf(b);
+    const bool frontB = fronts_ && !patchB && leafB && el_.front[b] >= 0;
+    Vec3 cb = Vec3::Zero(), nb = Vec3::Zero();
+    bool haveCb = false;
+    double phi = 0.0, direct = 0.0, front = 0.0;
+    Vec3 psi = Vec3::Zero();
+    for (Index k = links_.start[b]; k < links_.start[b + 1]; ++k) {
+      const Index a = links_.source[k];
+      const bool patchA = tree_.isPatch(a);
+      const bool frontA = fronts_ && !patchA && frontEmit_[a] != 0.0;
+      double e = emit_[a];
+      if (e == 0.0 && !frontA) {
+        continue;
+      }
+      const bool needW = patchA || frontA || patchB || (fronts_ && !patchB);
+      Vec3 w = Vec3::Zero(); // from a towards b
+      if (needW) {
+        if (!haveCb) {
+          cb = tree_.centroid(b);
+          if (patchB) {
+            nb = faceInwardNormal(tree_.face(b));
+          } else if (frontB) {
+            nb = unitNormal(scene_, b);
+          }
+          haveCb = true;
+        }
+        w = (cb - tree_.centroid(a)).normalized();
+      }
+      if (patchA) {
+        e *= std::max(0.0, faceInwardNormal(tree_.face(a)).dot(w));
+      } else if (frontA) {
+        const double d = frontEmit_[a];
+        if (tree_.isLeaf(a)) {
+          e += unitNormal(scene_, a).dot(w) > 0.0 ? d : 0.0;
+        } else {
+          e += std::clamp(0.5 * d + 0.75 * frontMoment_[a].dot(w), 0.0, d);
+        }
+      }
+      const double c = e * double(links_.gamma[k]);
+      if (patchB) {
+        phi += c * std::max(0.0, -nb.dot(w));
+        continue;
+      }
+      phi += c;
+      if (frontB) {
+        direct += c;
+        front += -nb.dot(w) > 0.0 ? c : 0.0; // light arriving from the front
+      } else if (fronts_ && !leafB) {
+        psi -= c * w; // towards the source
+      }
+    }
+    phi_[b] = phi;
+    if (fronts_ && !patchB) {
+      psi_[b] = psi;
+      if (leafB) {
+        leafDirect_[b] = direct;
+        leafFront_[b] = front;
+      }
+    }
+  });
+
+  // Push: every node hands what it received to its children.
+  for (int l = L - 1; l >= 1; --l) {
+    {
+      forEachNodeOfLevel(tree_, l, [&](Index node, bool patches) {
+        std::array<Index, 8> kids;
+        const int k = tree_.children(node, kids);
+        for (int i = 0; i < k; ++i) {
+          phi_[kids[i]] += phi_[node];
+          if (fronts_ && !patches) {
+            psi_[kids[i]] += psi_[node];
+          }
+        }
+      });
+    }
+  }
+
+  // Elements: cross-section times what reached them.
+  forEach(nv, [&](Index v) {
+    const Index e = el_.full[v];
+    if (e < 0) {
+      if (viewOut) {
+        viewOut[v] += phi_[v];
+      }
+      return;
+    }
+    y[e] += (normalised ? scale_[e] : 1.0) * tree_.sigma(v) * phi_[v];
+    if (fronts_ && el_.front[v] >= 0) {
+      const Index f = el_.front[v];
+      const double pushed = phi_[v] - leafDirect_[v];
+      const double front =
+        leafFront_[v] +
+        std::clamp(0.5 * pushed + 0.75 * unitNormal(scene_, v).dot(psi_[v]), 0.0, pushed);
+      y[f] += (normalised ? scale_[f] : 1.0) * tree_.sigma(v) * front;
+    }
+  });
+  forEach(np, [&](Index p) {
+    const Index e = el_.patchElement(p);
+    y[e] += (normalised ? scale_[e] : 1.0) * tree_.sigma(tree_.patchNode(0, p)) *
+            phi_[tree_.patchNode(0, p)];
+  });
+}
+
+std::size_t FarField::bytes() const
+{
+  return (emit_.size() + phi_.size() + frontEmit_.size() + leafDirect_.size() + leafFront_.size() +
+          scale_.size()) *
+           sizeof(double) +
+         (frontMoment_.size() + psi_.size()) * sizeof(Vec3);
+}
+
+} // namespace volrad

@@ -1,0 +1,397 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/HierarchicalSolver.h"
+
+#include "volrad/ClusterTree.h"
+#include "volrad/DirectLight.h"
+#include "volrad/EnergyBalance.h"
+#include "volrad/FarField.h"
+#include "volrad/LinkSet.h"
+#include "volrad/NearField.h"
+#include "volrad/ZonalSystem.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+namespace volrad {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t)
+{
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+using Vector = Eigen::VectorXd;
+
+/// Deterministic parallel reductions: the same split whatever the threads.
+template<class F>
+double reduceSum(Index n, F&& f)
+{
+  return tbb::parallel_deterministic_reduce(
+    tbb::blocked_range<Index>(0, n, 4096),
+    0.0,
+    [&](const tbb::blocked_range<Index>& r, double acc) {
+      for (Index i = r.begin(); i != r.end(); ++i) {
+        acc += f(i);
+      }
+      return acc;
+    },
+    std::plus<double>());
+}
+
+double maxAbs(const Vector& v)
+{
+  return tbb::parallel_deterministic_reduce(
+    tbb::blocked_range<Index>(0, v.size(), 4096),
+    0.0,
+    [&](const tbb::blocked_range<Index>& r, double m) {
+      for (Index i = r.begin(); i != r.end(); ++i) {
+        m = std::max(m, std::abs(v[i]));
+      }
+      return m;
+    },
+    [](double a, double b) { return std::max(a, b); });
+}
+
+/// Everything one channel's solve shares: the near field, the hierarchy,
+/// the links and the equations, with y = M x the scattered response of
+/// every element to radiosities x (self terms implicit).
+struct ChannelOperator
+{
+  const Scene& scene;
+  const NearField& near;
+  const ZonalSystem& sys;
+  Vector denominator; // 1 - c S_self
+  std::unique_ptr<FarField> far;
+
+  Vector apply(const Vector& x) const
+  {
+    Vector y = Vector::Zero(x.size());
+    near.apply(scene.grid, x.data(), y.data(), true);
+    far->apply(x.data(), y.data());
+    tbb::parallel_for(Index(0), Index(y.size()), [&](Index e) {
+      y[e] = sys.c[e] > 0.0 ? sys.c[e] * y[e] / denominator[e] : 0.0;
+    });
+    return y;
+  }
+};
+
+/// Largest radiosity under every tree node.
+std::vector<float> nodeRadiosity(const ClusterTree& tree,
+                                 const ExchangeElements& el,
+                                 const Vector& x)
+{
+  std::vector<float> r(tree.size(), 0.f);
+  const Grid& g = tree.grid(0);
+  for (Index v = 0; v < g.voxelCount(); ++v) {
+    double m = el.full[v] >= 0 ? x[el.full[v]] : 0.0;
+    if (el.front[v] >= 0) {
+      m = std::max(m, x[el.front[v]]);
+    }
+    r[v] = float(m);
+  }
+  for (Index p = 0; p < g.patchCount(); ++p) {
+    r[tree.patchNode(0, p)] = float(x[el.patchElement(p)]);
+  }
+  for (int l = 1; l < tree.levels(); ++l) {
+    for (const bool patches : { false, true }) {
+      const Index count = patches ? tree.grid(l).patchCount() : tree.grid(l).voxelCount();
+      for (Index c = 0; c < count; ++c) {
+        const Index node = patches ? tree.patchNode(l, c) : tree.voxelNode(l, c);
+        std::array<Index, 8> kids;
+        const int k = tree.children(node, kids);
+        float m = 0.f;
+        for (int i = 0; i < k; ++i) {
+          m = std::max(m, r[kids[i]]);
+        }
+        r[node] = m;
+      }
+    }
+  }
+  return r;
+}
+
+struct IterationState
+{
+  Vector x, dx; // radiosity and its unshot part
+
+  /// Largest change relative to each element's radiosity (a floor of
+  /// 1e-3 of the largest keeps dark elements from ruling).
+  double change(const Vector& v) const
+  {
+    const double floor = 1e-3 * maxAbs(x);
+    return tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<Index>(0, v.size(), 4096),
+      0.0,
+      [&](const tbb::blocked_range<Index>& r, double m) {
+        for (Index i = r.begin(); i != r.end(); ++i) {
+          if (v[i] != 0.0) {
+            m = std::max(m, std::abs(v[i]) / (std::abs(x[i]) + floor));
+          }
+        }
+        return m;
+      },
+      [](double a, double b) { return std::max(a, b); });
+  }
+  long long iterations = 0, shots = 0;
+  bool converged = false;
+};
+
+/// Sweeps of shooting; returns false when they stall (Automatic mode).
+bool shoot(const ChannelOperator& op,
+           IterationState& s,
+           double epsilon,
+           int maxIterations,
+           bool stopWhenStalling,
+           HierarchicalReport& report,
+           const ProgressRange& progress)
+{
+  double previous = s.change(s.dx), ratio = 0.0;
+  int slow = 0;
+  while (s.iterations < maxIterations) {
+    // What is still unshot, and what the sweeps it will take still add
+    // (a geometric tail of the observed contraction ratio).
+    const double tail = ratio < 1.0 ? std::max(1.0, ratio / (1.0 - ratio)) : 1e30;
+    if (previous * tail <= epsilon) {
+      s.converged = true;
+      return true;
+    }
+    s.shots +=
+      (long long)reduceSum(s.dx.size(), [&](Index e) { return s.dx[e] != 0.0 ? 1.0 : 0.0; });
+    s.dx = op.apply(s.dx);
+    s.x += s.dx;
+    ++s.iterations;
+    const double now = s.change(s.dx);
+    report.dQmaxHistory.push_back(now);
+    progress.report(std::min(1.0,
+                             std::log(std::max(now, 1e-300) / std::max(previous, 1e-300)) /
+                               std::log(std::max(epsilon, 1e-300))));
+    ratio = previous > 0.0 ? now / previous : 0.0;
+    // Stalling: fewer than a tenth of the unshot light goes per sweep.
+    slow = ratio > 0.9 ? slow + 1 : 0;
+    previous = now;
+    if (stopWhenStalling && slow >= 3) {
+      return false;
+    }
+  }
+  return true;
+}
+
+/// BiCGSTAB on (I - M) x = x0 from the current x; dx becomes the residual
+/// (what the next sweep would shoot).
+void krylov(const ChannelOperator& op,
+            const Vector& x0,
+            IterationState& s,
+            double epsilon,
+            int maxIterations,
+            HierarchicalReport& report)
+{
+  auto A = [&](const Vector& v) -> Vector { return v - op.apply(v); };
+  auto dot = [](const Vector& a, const Vector& b) {
+    return reduceSum(a.size(), [&](Index i) { return a[i] * b[i]; });
+  };
+  report.usedKrylov = true;
+  Vector r = x0 - A(s.x);
+  const Vector r0 = r;
+  Vector p = Vector::Zero(r.size()), v = Vector::Zero(r.size());
+  double rho = 1.0, alpha = 1.0, omega = 1.0;
+  while (s.iterations < maxIterations) {
+    const double res = s.change(r);
+    report.dQmaxHistory.push_back(res);
+    if (res <= epsilon) {
+      s.converged = true;
+      break;
+    }
+    const double rho1 = dot(r0, r);
+    if (rho1 == 0.0) {
+      break;
+    }
+    const double beta = (rho1 / rho) * (alpha / omega);
+    p = r + beta * (p - omega * v);
+    v = A(p);
+    alpha = rho1 / dot(r0, v);
+    const Vector sv = r - alpha * v;
+    s.iterations += 1;
+    if (s.change(sv) <= epsilon) {
+      s.x += alpha * p;
+      r = sv;
+      continue;
+    }
+    const Vector t = A(sv);
+    const double tt = dot(t, t);
+    omega = tt > 0.0 ? dot(t, sv) / tt : 0.0;
+    s.x += alpha * p + omega * sv;
+    r = sv - omega * t;
+    rho = rho1;
+    s.iterations += 1;
+    if (omega == 0.0) {
+      break;
+    }
+  }
+  s.dx = r;
+}
+
+} // namespace
+
+Solution solveHierarchical(const Scene& scene,
+                           const HierarchicalOptions& opt,
+                           HierarchicalReport* reportOut)
+{
+  const auto start = Clock::now();
+  scene.validate();
+  if (!(opt.epsilon > 0.0) || !(opt.linkTolerance >= 0.0) || opt.maxIterations < 1 ||
+      opt.nearRadius < 1 || opt.nearRadius > 3) {
+    throw Error("hierarchical solver: epsilon must be > 0, linkTolerance >= 0, maxIterations >= 1 "
+                "and the near radius 1 to 3");
+  }
+  HierarchicalReport report;
+  const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 1e-4;
+  const Grid& g = scene.grid;
+  const int C = scene.channels;
+  const Index nv = g.voxelCount();
+  Solution sol = emptySolution(scene, "hierarchical");
+
+  tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
+  const ProgressRange progress(opt.progress, 0.0, 1.0);
+  const double V = g.voxelVolume();
+  NearFieldOptions nearOptions;
+  nearOptions.radius = opt.nearRadius;
+  nearOptions.quadrature = opt.quadrature;
+  // Large grids: fewer lines per heterogeneous voxel (homogeneous
+  // neighbourhoods keep the fine shared quadrature).
+  if (nv > 64 * 64 * 64) {
+    nearOptions.quadrature.voxelPointsPerAxis =
+      std::min(nearOptions.quadrature.voxelPointsPerAxis, 2);
+  }
+
+  for (int ch = 0; ch < C; ++ch) {
+    const ProgressRange chp = progress.sub(double(ch) / C, double(ch + 1) / C);
+    arena.execute([&] {
+      auto t = Clock::now();
+      const NearField near = computeNearField(scene, ch, nearOptions, chp.sub(0.0, 0.3));
+      report.nearSeconds += since(t);
+      const ExchangeElements& el = near.elements;
+      const Index n = el.size();
+      const DirectLighting dl = computeDirectLight(scene, ch, opt.quadrature);
+      const ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
+      ChannelOperator op{ scene, near, sys, Vector::Ones(n), nullptr };
+      for (Index e = 0; e < n; ++e) {
+        if (sys.c[e] > 0.0) {
+          op.denominator[e] = 1.0 - sys.c[e] * near.diagonal(e);
+          if (!(op.denominator[e] > 1e-12)) {
+            throw Error(
+              "the hierarchical solve is singular: an element scatters back all it emits");
+          }
+        }
+      }
+      const Vector x0 = (sys.e + sys.c.cwiseProduct(sys.D)).cwiseQuotient(op.denominator);
+      const VoxelPyramid pyramid(scene, ch);
+      const ClusterTree tree(scene, ch, pyramid);
+      std::vector<double> target(n);
+      for (Index e = 0; e < n; ++e) {
+        target[e] = exchangeRowTarget(scene, ch, el, e);
+      }
+
+      IterationState state;
+      state.x = x0;
+      state.dx = x0;
+      LinkSet links;
+      for (int pass = 0; pass < 2; ++pass) {
+        t = Clock::now();
+        LinkRefinement refinement;
+        refinement.nearRadius = opt.nearRadius;
+        refinement.tolerance = linkTolerance;
+        refinement.radiosity = nodeRadiosity(tree, el, state.x);
+        refinement.powerScale = std::max(1e-300, reduceSum(n, [&](Index e) {
+                                           return el.isFront(e) ? 0.0 : state.x[e] * target[e];
+                                         }));
+        op.far.reset();
+        links = refineLinks(tree, refinement, chp.sub(0.3 + 0.1 * pass, 0.35 + 0.1 * pass));
+        op.far = std::make_unique<FarField>(scene, tree, links, near);
+        report.linkSeconds += since(t);
+        report.peakBytes =
+          std::max(report.peakBytes,
+                   near.bytes() + tree.bytes() + pyramid.grid(0).voxelCount() * 3 * sizeof(float) +
+                     links.bytes() + op.far->bytes() + std::size_t(n) * 8 * sizeof(double));
+        if (pass == 1) {
+          // Continue with the finer links: the change they make is added
+          // and becomes the unshot radiosity.
+          state.dx = x0 + op.apply(state.x) - state.x;
+          state.x += state.dx;
+        }
+        t = Clock::now();
+        const double eps = pass == 0 ? std::max(opt.epsilon, 1e-2) : opt.epsilon;
+        const ProgressRange ip = chp.sub(pass == 0 ? 0.35 : 0.5, pass == 0 ? 0.4 : 0.95);
+        bool done = false;
+        if (opt.iteration != HierarchicalOptions::Iteration::Krylov) {
+          done = shoot(op,
+                       state,
+                       eps,
+                       opt.maxIterations,
+                       opt.iteration == HierarchicalOptions::Iteration::Automatic,
+                       report,
+                       ip);
+        }
+        if (!done) {
+          krylov(op, x0, state, eps, opt.maxIterations, report);
+        }
+        report.iterationSeconds += since(t);
+      }
+      sol.stats.converged = sol.stats.converged && state.converged;
+      sol.stats.iterations += state.iterations;
+      sol.stats.links +=
+        links.pairs + static_cast<long long>(near.stencil.size() / 2 + near.extraValue.size() / 2);
+      sol.stats.finalUnshot = std::max(sol.stats.finalUnshot, maxAbs(state.dx));
+      report.shots += state.shots;
+      if (report.linksPerLevel.size() < links.pairsPerLevel.size()) {
+        report.linksPerLevel.resize(links.pairsPerLevel.size(), 0);
+      }
+      for (std::size_t l = 0; l < links.pairsPerLevel.size(); ++l) {
+        report.linksPerLevel[l] += links.pairsPerLevel[l];
+      }
+
+      // Fields: collided power C = S x + D, and the views of other voxels.
+      Vector collided = sys.D;
+      std::vector<double> farView(nv, 0.0);
+      near.apply(g, state.x.data(), collided.data(), false);
+      op.far->apply(state.x.data(), collided.data(), farView.data());
+      const Vector& x = state.x;
+      storeChannelFields(
+        scene,
+        ch,
+        el,
+        x,
+        collided,
+        [&](Index v) {
+          double s = farView[v] + dl.track[v] / V;
+          for (Index k = near.viewStart[v]; k < near.viewStart[v + 1]; ++k) {
+            s += near.viewValue[k] * x[near.viewColumn[k]];
+          }
+          return s;
+        },
+        [&](Index v) {
+          // No front side: half of the scattered light, the direct light exactly.
+          const std::size_t o = std::size_t(v) * C + ch;
+          return 0.5 * (sol.G[o] - dl.track[v] / V) + dl.trackFront[v] / V;
+        },
+        sol);
+      sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
+    });
+  }
+  progress.report(1.0);
+  sol.stats.seconds = since(start);
+  sol.stats.estimatedBytes = report.peakBytes;
+  if (reportOut) {
+    *reportOut = std::move(report);
+  }
+  return sol;
+}
+
+} // namespace volrad

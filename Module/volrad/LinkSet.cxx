@@ -1,0 +1,264 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/LinkSet.h"
+
+#include "volrad/Error.h"
+#include "volrad/Sampling.h"
+
+#include <tbb/combinable.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace volrad {
+
+namespace {
+
+struct Pair
+{
+  Index a, b;
+};
+
+struct Accepted
+{
+  Index a, b;
+  float gamma;
+  int level;
+};
+
+double halfChord(const Grid& g)
+{
+  const Vec3& h = g.spacing;
+  return 2.0 * h.prod() / (2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]));
+}
+
+/// sigma of a node towards direction w (pointing away from it).
+double directedSigma(const ClusterTree& t, Index n, const Vec3& w)
+{
+  if (!t.isPatch(n)) {
+    return t.sigma(n);
+  }
+  return t.sigma(n) * std::max(0.0, faceInwardNormal(t.face(n)).dot(w));
+}
+
+/// Mean of d^2 / |x - y|^2 over two voxels whose centres are d apart, by
+/// offset (|di|, |dj|, |dk|) up to kCorrectedReach: the point-to-point 1/r^2
+/// of a link between two voxels is this much too small (about 4% two voxels
+/// apart). Gauss-Legendre, 4 points per axis in each voxel.
+constexpr int kCorrectedReach = 4;
+
+struct SpreadCorrection
+{
+  double factor[kCorrectedReach + 1][kCorrectedReach + 1][kCorrectedReach + 1];
+
+  explicit SpreadCorrection(const Vec3& h)
+  {
+    const double gx[4] = {
+      -0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526
+    };
+    const double gw[4] = {
+      0.3478548451374538, 0.6521451548625461, 0.6521451548625461, 0.3478548451374538
+    };
+    // Differences of two points, one per voxel, along one axis: their
+    // weights multiply; sum over the 4x4 pairs per axis.
+    double diff[16], weight[16];
+    for (int a = 0; a < 4; ++a) {
+      for (int b = 0; b < 4; ++b) {
+        diff[4 * a + b] = 0.5 * (gx[a] - gx[b]);
+        weight[4 * a + b] = 0.25 * gw[a] * gw[b];
+      }
+    }
+    for (int i = 0; i <= kCorrectedReach; ++i) {
+      for (int j = 0; j <= kCorrectedReach; ++j) {
+        for (int k = 0; k <= kCorrectedReach; ++k) {
+          const Vec3 d(i * h[0], j * h[1], k * h[2]);
+          const double d2 = d.squaredNorm();
+          double sum = 0.0;
+          for (int a = 0; a < 16 && d2 > 0.0; ++a) {
+            for (int b = 0; b < 16; ++b) {
+              for (int c = 0; c < 16; ++c) {
+                const Vec3 r = d + Vec3(diff[a] * h[0], diff[b] * h[1], diff[c] * h[2]);
+                sum += weight[a] * weight[b] * weight[c] * d2 / r.squaredNorm();
+              }
+            }
+          }
+          factor[i][j][k] = d2 > 0.0 ? sum : 1.0;
+        }
+      }
+    }
+  }
+  double operator()(const std::array<int, 3>& a, const std::array<int, 3>& b) const
+  {
+    const int i = std::abs(a[0] - b[0]), j = std::abs(a[1] - b[1]), k = std::abs(a[2] - b[2]);
+    if (i > kCorrectedReach || j > kCorrectedReach || k > kCorrectedReach) {
+      return 1.0;
+    }
+    return factor[i][j][k];
+  }
+};
+
+} // namespace
+
+double linkGamma(const ClusterTree& tree, Index a, Index b, double depthTolerance)
+{
+  const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
+  const Vec3 ab = cb - ca;
+  const double r = ab.norm();
+  if (!(r > 0.0)) {
+    return 0.0;
+  }
+  const Vec3 w = ab / r;
+  const double chord = halfChord(tree.grid(0));
+  const double t0 = tree.isPatch(a) ? 0.0 : chord;
+  const double t1 = r - (tree.isPatch(b) ? 0.0 : chord);
+  double tau = 1.0;
+  if (t1 > t0) {
+    tau = std::exp(
+      -tree.pyramid().opticalDepthAdaptive(ca + t0 * w, ca + t1 * w, depthTolerance).estimate);
+  }
+  return tau / (kPi * r * r);
+}
+
+LinkSet refineLinks(const ClusterTree& tree,
+                    const LinkRefinement& opt,
+                    const ProgressRange& progress)
+{
+  if (opt.radiosity.size() != std::size_t(tree.size())) {
+    throw Error("link refinement needs one radiosity estimate per tree node");
+  }
+  std::vector<Pair> todo;
+  const auto roots = tree.roots();
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    for (std::size_t j = i; j < roots.size(); ++j) {
+      todo.push_back({ roots[i], roots[j] });
+    }
+  }
+  const double budget = opt.tolerance * opt.powerScale;
+  const SpreadCorrection spread(tree.grid(0).spacing);
+  tbb::combinable<std::vector<Accepted>> accepted;
+  int round = 0;
+  while (!todo.empty()) {
+    tbb::combinable<std::vector<Pair>> next;
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 256), [&](const auto& range) {
+      auto& out = next.local();
+      auto& keep = accepted.local();
+      std::array<Index, 8> ka, kb;
+      for (std::size_t k = range.begin(); k != range.end(); ++k) {
+        const Index a = todo[k].a, b = todo[k].b;
+        const bool pa = tree.isPatch(a), pb = tree.isPatch(b);
+        if (pa && pb && tree.face(a) == tree.face(b)) {
+          continue; // coplanar: they cannot see each other
+        }
+        if (a == b) { // a cluster with itself: its children with each other
+          const int n = tree.children(a, ka);
+          for (int i = 0; i < n; ++i) {
+            for (int j = i; j < n; ++j) {
+              out.push_back({ ka[i], ka[j] });
+            }
+          }
+          continue;
+        }
+        const double sa = tree.sigma(a), sb = tree.sigma(b);
+        if (sa <= 0.0 && sb <= 0.0) {
+          continue; // two empty clusters exchange nothing
+        }
+        const bool leafA = tree.isLeaf(a), leafB = tree.isLeaf(b);
+        const int gap = tree.gap(a, b);
+        bool link = false;
+        double gamma = 0.0;
+        if (gap > opt.nearRadius) {
+          gamma = linkGamma(tree, a, b, opt.depthTolerance);
+          if (leafA && leafB) {
+            link = true;
+            if (!pa && !pb) {
+              gamma *= spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b));
+            }
+          } else {
+            const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
+            const double r = (cb - ca).norm();
+            const Vec3 w = (cb - ca) / r;
+            const double ra = tree.radius(a), rb = tree.radius(b);
+            const double geometric = (ra * ra + rb * rb) / (r * r);
+            const int level = std::max(tree.level(a), tree.level(b));
+            const VoxelPyramid::Depth d = tree.pyramid().opticalDepth(ca, cb, level);
+            const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
+            const double err = std::min(1.0, geometric) + std::min(1.0, 0.5 * (d.upper - d.lower)) +
+                               std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
+            const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
+            const double S = directedSigma(tree, a, w) * directedSigma(tree, b, -w) * gamma;
+            link = x * S * err <= budget;
+          }
+        } else if (leafA && leafB) {
+          continue; // the near field holds this pair
+        }
+        if (link) {
+          if (gamma > 0.0) {
+            keep.push_back({ a, b, float(gamma), std::min(tree.level(a), tree.level(b)) });
+          }
+          continue;
+        }
+        // Split the larger node (a leaf cannot be split).
+        const bool splitA = leafB || (!leafA && tree.radius(a) >= tree.radius(b));
+        if (splitA) {
+          const int n = tree.children(a, ka);
+          for (int i = 0; i < n; ++i) {
+            out.push_back({ ka[i], b });
+          }
+        } else {
+          const int n = tree.children(b, kb);
+          for (int i = 0; i < n; ++i) {
+            out.push_back({ a, kb[i] });
+          }
+        }
+      }
+    });
+    todo.clear();
+    next.combine_each([&](std::vector<Pair>& l) {
+      todo.insert(todo.end(), l.begin(), l.end());
+      std::vector<Pair>().swap(l);
+    });
+    progress.report(std::min(0.9, 0.1 * ++round));
+  }
+
+  // Both directions of every link, in a thread-independent order.
+  std::vector<Accepted> all;
+  accepted.combine_each([&](std::vector<Accepted>& l) {
+    all.insert(all.end(), l.begin(), l.end());
+    std::vector<Accepted>().swap(l);
+  });
+  LinkSet out;
+  out.pairs = (long long)all.size();
+  out.pairsPerLevel.assign(tree.levels(), 0);
+  for (const Accepted& x : all) {
+    ++out.pairsPerLevel[x.level];
+  }
+  if (tree.size() > Index(std::numeric_limits<std::int32_t>::max())) {
+    throw Error("the cluster tree is too large for 32-bit link indices");
+  }
+  const std::size_t m = all.size();
+  all.resize(2 * m);
+  for (std::size_t k = 0; k < m; ++k) {
+    all[m + k] = { all[k].b, all[k].a, all[k].gamma, all[k].level };
+  }
+  // Receiver = b.
+  tbb::parallel_sort(all.begin(), all.end(), [](const Accepted& x, const Accepted& y) {
+    return x.b != y.b ? x.b < y.b : x.a < y.a;
+  });
+  out.start.assign(tree.size() + 1, 0);
+  out.source.resize(all.size());
+  out.gamma.resize(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    ++out.start[all[k].b + 1];
+    out.source[k] = std::int32_t(all[k].a);
+    out.gamma[k] = all[k].gamma;
+  }
+  for (Index n = 0; n < tree.size(); ++n) {
+    out.start[n + 1] += out.start[n];
+  }
+  progress.report(1.0);
+  return out;
+}
+
+} // namespace volrad

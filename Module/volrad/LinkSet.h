@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/// @file LinkSet.h
+/// @brief The links of the hierarchical solver: which pairs of cluster-tree
+/// nodes exchange light directly, found by error-driven refinement from the
+/// roots (Hanrahan et al. 1991 "BF refinement", Sillion 1995 clusters), and
+/// how they carry it.
+///
+/// A link between nodes A and B stands for the exchange areas between all
+/// their elements, S(A, B) ~ sigma_A(w) sigma_B(-w) gamma, with
+/// gamma = tau / (pi r^2) from centroid to centroid (tau marched in the voxel
+/// pyramid within a tolerance, less half a voxel chord at a voxel end, whose
+/// own attenuation its effective cross-section holds) and sigma(w) a voxel
+/// cluster's cross-section (isotropic) or a patch node's area times the
+/// cosine towards the other end. Front sides inside clusters emit and
+/// receive through an order-1 spherical-harmonic mask (exact at voxels).
+///
+/// Refinement: the pair (A, B) is linked when their voxel boxes are more
+/// than the near-field radius apart and the power the link may carry wrongly,
+///   max(x_A, x_B) S(A, B) err(A, B),
+/// is at most `tolerance` times the scene's total power; otherwise the
+/// larger node is split. err is the link's relative error estimate: the
+/// spread of 1/r^2 over the two nodes ((rho_A^2 + rho_B^2) / r^2), the
+/// heterogeneity of the medium between them (the width of the pyramid's
+/// optical-depth bounds at the link's level) and the optical size of each
+/// cluster ((kappa_t rho)^2 / 4). x is each node's largest radiosity.
+/// Pairs closer than that at the voxels are left to the near field.
+#pragma once
+
+#include "volrad/ClusterTree.h"
+#include "volrad/Progress.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace volrad {
+
+struct LinkRefinement
+{
+  int nearRadius = 1;
+  double tolerance = 1e-4;      ///< relative to powerScale
+  double powerScale = 1.0;      ///< total power leaving all elements [W]
+  std::vector<float> radiosity; ///< per tree node, the largest radiosity under it
+  double depthTolerance = 0.01; ///< optical-depth error of tau along a link
+};
+
+struct LinkSet
+{
+  /// Per receiving node, the links into it: [start[b], start[b + 1]).
+  std::vector<Index> start;
+  std::vector<std::int32_t> source;
+  std::vector<float> gamma;             ///< tau / (pi r^2)
+  long long pairs = 0;                  ///< links (each serves both directions)
+  std::vector<long long> pairsPerLevel; ///< by the finer end's level
+
+  std::size_t bytes() const
+  {
+    return start.size() * sizeof(Index) + source.size() * (sizeof(std::int32_t) + sizeof(float));
+  }
+};
+
+/// gamma of a link (see above).
+double linkGamma(const ClusterTree& tree, Index a, Index b, double depthTolerance);
+
+LinkSet refineLinks(const ClusterTree& tree,
+                    const LinkRefinement& refinement,
+                    const ProgressRange& progress = ProgressRange());
+
+} // namespace volrad
