@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "volrad/ClusterTree.h"
 
-#include "volrad/ClusterExchange.h"
-
 #include <algorithm>
+#include <cmath>
 
 namespace volrad {
+
+double effectiveCrossSection(double kappaT, const Vec3& h)
+{
+  const double surface = 2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]);
+  const double meanChord = 4.0 * h.prod() / surface;
+  return 0.25 * surface * -std::expm1(-kappaT * meanChord);
+}
 
 ClusterTree::ClusterTree(const Scene& scene, int channel, const VoxelPyramid& pyramid)
   : pyramid_(pyramid)

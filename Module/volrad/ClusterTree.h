@@ -5,8 +5,8 @@
 /// face of the domain, a quadtree of boundary patches aligned with them.
 ///
 /// Every node knows what a link needs of it: its extinction cross-section
-/// (voxel cells: the sum of its voxels' effective cross-sections, see
-/// ClusterExchange; patch nodes: their area, which a link multiplies by the
+/// (voxel cells: the sum of its voxels' effective cross-sections, below;
+/// patch nodes: their area, which a link multiplies by the
 /// cosine towards the other end), its centroid (sigma- or area-weighted),
 /// the radius of a sphere around it, and its box in voxel indices, whose
 /// distance to another node's box decides whether the near field already
@@ -20,6 +20,12 @@
 #include <vector>
 
 namespace volrad {
+
+/// Mean extinction cross-section of a voxel over all directions [length^2]:
+/// (S/4)(1 - exp(-kappa_t 4V/S)), S the voxel's surface: kappa_t V when thin,
+/// the mean projected area S/4 when thick (Cauchy). A cluster's is the sum
+/// of its voxels'; links place it at the sigma-weighted centroid.
+double effectiveCrossSection(double kappaT, const Vec3& spacing);
 
 class ClusterTree
 {

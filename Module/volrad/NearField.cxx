@@ -40,6 +40,26 @@ std::vector<Triplet> gatherTriplets(TripletLists& lists)
   return all;
 }
 
+/// Compressed rows from triplets sorted by row: row r is [start[r], start[r + 1]).
+void toRows(const std::vector<Triplet>& t,
+            Index rows,
+            std::vector<Index>& start,
+            std::vector<std::int64_t>& column,
+            std::vector<float>& value)
+{
+  start.assign(rows + 1, 0);
+  column.resize(t.size());
+  value.resize(t.size());
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    ++start[t[k].row + 1];
+    column[k] = t[k].col;
+    value[k] = float(t[k].value);
+  }
+  for (Index r = 0; r < rows; ++r) {
+    start[r + 1] += start[r];
+  }
+}
+
 /// Whether v's box lies inside the domain and is one homogeneous medium
 /// without front sides: then its rows depend on kappa_t alone.
 bool homogeneousBox(const Grid& g,
@@ -368,17 +388,7 @@ NearField computeNearField(const Scene& scene,
   std::sort(sym.begin(), sym.end(), [](const Triplet& x, const Triplet& y) {
     return x.row != y.row ? x.row < y.row : x.col < y.col;
   });
-  out.extraStart.assign(n + 1, 0);
-  out.extraColumn.resize(sym.size());
-  out.extraValue.resize(sym.size());
-  for (std::size_t k = 0; k < sym.size(); ++k) {
-    ++out.extraStart[sym[k].row + 1];
-    out.extraColumn[k] = sym[k].col;
-    out.extraValue[k] = float(sym[k].value);
-  }
-  for (Index e = 0; e < n; ++e) {
-    out.extraStart[e + 1] += out.extraStart[e];
-  }
+  toRows(sym, n, out.extraStart, out.extraColumn, out.extraValue);
 
   // Far weights: what each row's near part leaves of its target.
   out.far.assign(n, 0.0);
@@ -440,17 +450,7 @@ NearField computeNearField(const Scene& scene,
     }
   });
   const std::vector<Triplet> viewRows = gatherTriplets(views);
-  out.viewStart.assign(nv + 1, 0);
-  out.viewColumn.resize(viewRows.size());
-  out.viewValue.resize(viewRows.size());
-  for (std::size_t k = 0; k < viewRows.size(); ++k) {
-    ++out.viewStart[viewRows[k].row + 1];
-    out.viewColumn[k] = viewRows[k].col;
-    out.viewValue[k] = float(viewRows[k].value);
-  }
-  for (Index v = 0; v < nv; ++v) {
-    out.viewStart[v + 1] += out.viewStart[v];
-  }
+  toRows(viewRows, nv, out.viewStart, out.viewColumn, out.viewValue);
   progress.report(1.0);
   return out;
 }

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Cluster exchange areas against the dense solver's: the sum of S over the
-// voxel pairs of two clusters, for clusters further and further apart.
+// voxel pairs of two clusters, for clusters further and further apart. A
+// link's exchange is sigma_A sigma_B gamma (LinkSet.h).
 #include "TestScenes.h"
-#include "volrad/ClusterExchange.h"
+#include "volrad/ClusterTree.h"
 #include "volrad/ExchangeAreas.h"
+#include "volrad/LinkSet.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +18,7 @@ namespace {
 /// (cluster estimate, dense sum).
 std::pair<double, double> meanExchange(const Scene& s,
                                        const ExchangeAreas& dense,
-                                       const ClusterExchange& clusters,
+                                       const ClusterTree& tree,
                                        const VoxelPyramid& pyramid,
                                        int level,
                                        int offset)
@@ -30,7 +32,8 @@ std::pair<double, double> meanExchange(const Scene& s,
       continue;
     }
     const Index b = cg.index(ca[0] + offset, ca[1], ca[2]);
-    estimate += clusters.exchange(level, a, level, b, 1e-3);
+    const Index na = tree.voxelNode(level, a), nb = tree.voxelNode(level, b);
+    estimate += tree.sigma(na) * tree.sigma(nb) * linkGamma(tree, na, nb, 1e-3);
     const auto cb = cg.ijk(b);
     for (Index u = 0; u < s.grid.voxelCount(); ++u) {
       const auto cu = s.grid.ijk(u);
@@ -66,10 +69,10 @@ TEST(ClusterExchange, ApproachesTheDenseSumsWithDistance)
   const ExchangeAreas dense =
     computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(none, 0, 1));
   const VoxelPyramid pyramid(s, 0);
-  const ClusterExchange clusters(s, 0, pyramid);
+  const ClusterTree tree(s, 0, pyramid);
   double previous = 1e9;
   for (int offset : { 2, 3, 5, 7 }) {
-    const auto [estimate, exact] = meanExchange(s, dense, clusters, pyramid, 1, offset);
+    const auto [estimate, exact] = meanExchange(s, dense, tree, pyramid, 1, offset);
     const double err = std::abs(estimate / exact - 1.0);
     std::printf("[measured] 2^3 clusters %d cells apart: cluster S / dense S - 1 = %+.4f\n",
                 offset,
@@ -79,7 +82,7 @@ TEST(ClusterExchange, ApproachesTheDenseSumsWithDistance)
   }
   EXPECT_LT(previous, 0.03);
   for (int offset : { 2, 3 }) {
-    const auto [estimate, exact] = meanExchange(s, dense, clusters, pyramid, 2, offset);
+    const auto [estimate, exact] = meanExchange(s, dense, tree, pyramid, 2, offset);
     std::printf("[measured] 4^3 clusters %d cells apart: cluster S / dense S - 1 = %+.4f\n",
                 offset,
                 estimate / exact - 1.0);
