@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace volrad {
 
@@ -56,22 +57,52 @@ FarField::FarField(const Scene& scene,
     leafDirect_.assign(tree.grid(0).voxelCount(), 0.0);
     leafFront_.assign(tree.grid(0).voxelCount(), 0.0);
   }
-  // Radiosity 1 on the partition: each element's far column sum.
-  const Index n = el_.size();
-  std::vector<double> ones(n, 0.0), received(n, 0.0);
-  std::fill(ones.begin(), ones.begin() + el_.partitionSize(), 1.0);
-  gather(ones.data(), received.data(), nullptr, false);
+  // Balance the links' operator F symmetrically, F' = D F D, towards every
+  // element receiving exactly its far weight for radiosity 1 on the
+  // partition (d_e (F d)_e = far_e; damped symmetric Sinkhorn steps, d kept
+  // within [1/2, 2] since far weights that are small differences carry the
+  // near field's quadrature noise). What remains goes to each element's
+  // self exchange: then rows and, by symmetry, columns are exact, and the
+  // far field neither loses nor makes energy. Front sides (inside the
+  // partition's full sides) are scaled per row.
+  const Index n = el_.size(), partition = el_.partitionSize();
+  inScale_.assign(n, 0.0);
+  std::fill(inScale_.begin(), inScale_.begin() + partition, 1.0);
   scale_.assign(n, 1.0);
+  self_.assign(n, 0.0);
+  std::vector<double> received(n);
+  for (int step = 0; step < kBalanceSteps; ++step) {
+    std::fill(received.begin(), received.end(), 0.0);
+    gather(inScale_.data(), received.data(), nullptr, false);
+    for (Index e = 0; e < partition; ++e) {
+      if (received[e] > 0.0) {
+        const double ratio = std::max(0.0, near.far[e]) / received[e];
+        inScale_[e] = std::clamp(std::sqrt(inScale_[e] * ratio), 0.5, 2.0);
+      }
+    }
+  }
+  std::fill(received.begin(), received.end(), 0.0);
+  gather(inScale_.data(), received.data(), nullptr, false);
   for (Index e = 0; e < n; ++e) {
-    if (received[e] > 0.0) {
+    if (e < partition) {
+      scale_[e] = inScale_[e];
+      self_[e] = near.far[e] - inScale_[e] * received[e];
+    } else if (received[e] > 0.0) {
       scale_[e] = near.far[e] / received[e];
     }
+  }
+  // Sources are scaled on the way in (front sides: by their row only).
+  for (Index e = partition; e < n; ++e) {
+    inScale_[e] = 1.0;
   }
 }
 
 void FarField::apply(const double* x, double* y, double* viewOut) const
 {
-  gather(x, y, viewOut, true);
+  std::vector<double> scaled(el_.size());
+  forEach(el_.size(), [&](Index e) { scaled[e] = inScale_[e] * x[e]; });
+  gather(scaled.data(), y, viewOut, true);
+  forEach(el_.size(), [&](Index e) { y[e] += self_[e] * x[e]; });
 }
 
 void FarField::gather(const double* x, double* y, double* viewOut, bool normalised) const

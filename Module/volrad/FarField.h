@@ -5,13 +5,15 @@
 /// order-1 mask), gather over the links into each receiving node, push
 /// (each node hands what it received down to its elements).
 ///
-/// Every element's far gathering is then scaled so that, for radiosity 1
-/// on every full side and patch, it receives exactly its far weight from
-/// the near field (NearField::far, exact up to quadrature): by reciprocity
-/// that is what all its far partners send it. This removes the links'
-/// systematic error (the 1/r^2 and transmittance averages over clusters)
-/// from each element's total, which keeps the white furnace and the energy
-/// balance close while the links decide only where the far light comes from.
+/// The links' operator F is then balanced symmetrically, D F D with D
+/// diagonal within [1/2, 2], towards each element receiving exactly its far
+/// weight from the near field (NearField::far) for radiosity 1 on every
+/// full side and patch: by reciprocity that is what all its far partners
+/// send it, and by symmetry what it sends them. The rest of each row's
+/// difference is added to the element's self exchange, so every row and
+/// column of the whole operator is exact and symmetric: the far field
+/// neither loses nor makes energy (white furnace, energy balance), while
+/// the links decide where the far light comes from.
 #pragma once
 
 #include "volrad/ClusterTree.h"
@@ -33,8 +35,10 @@ public:
   /// y[e] += far collided power of element e for element radiosities x.
   /// With viewOut, also the far G of voxels that are not elements.
   void apply(const double* x, double* y, double* viewOut = nullptr) const;
-  /// The normalisation, per element (1 where nothing is known).
+  /// The balancing D, per element (front sides: their row's scale).
   const std::vector<double>& scale() const { return scale_; }
+  /// What each element's self exchange gained to make its row exact.
+  const std::vector<double>& selfCorrection() const { return self_; }
   std::size_t bytes() const;
 
 private:
@@ -45,7 +49,8 @@ private:
   const LinkSet& links_;
   const ExchangeElements& el_;
   bool fronts_ = false;
-  std::vector<double> scale_;
+  static constexpr int kBalanceSteps = 6;
+  std::vector<double> scale_, inScale_, self_;
   // Work arrays, per tree node (mutable: apply is logically const).
   mutable std::vector<double> emit_, phi_;
   mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;

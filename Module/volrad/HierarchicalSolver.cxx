@@ -30,6 +30,10 @@ double since(Clock::time_point t)
 
 using Vector = Eigen::VectorXd;
 
+/// Radiosity every element counts with in the link refinement, relative to
+/// the largest.
+constexpr double kRadiosityFloor = 1e-2;
+
 /// Deterministic parallel reductions: the same split whatever the threads.
 template<class F>
 double reduceSum(Index n, F&& f)
@@ -83,22 +87,28 @@ struct ChannelOperator
   }
 };
 
-/// Largest radiosity under every tree node.
+/// Largest radiosity under every tree node, each element's at least
+/// `floor`: the far field's balancing relies on every link's row sums, so
+/// the links between dark elements must not be arbitrarily coarse.
 std::vector<float> nodeRadiosity(const ClusterTree& tree,
                                  const ExchangeElements& el,
-                                 const Vector& x)
+                                 const Vector& x,
+                                 double floor)
 {
   std::vector<float> r(tree.size(), 0.f);
   const Grid& g = tree.grid(0);
   for (Index v = 0; v < g.voxelCount(); ++v) {
-    double m = el.full[v] >= 0 ? x[el.full[v]] : 0.0;
+    if (el.full[v] < 0) {
+      continue;
+    }
+    double m = std::max(floor, x[el.full[v]]);
     if (el.front[v] >= 0) {
       m = std::max(m, x[el.front[v]]);
     }
     r[v] = float(m);
   }
   for (Index p = 0; p < g.patchCount(); ++p) {
-    r[tree.patchNode(0, p)] = float(x[el.patchElement(p)]);
+    r[tree.patchNode(0, p)] = float(std::max(floor, x[el.patchElement(p)]));
   }
   for (int l = 1; l < tree.levels(); ++l) {
     for (const bool patches : { false, true }) {
@@ -299,6 +309,23 @@ Solution solveHierarchical(const Scene& scene,
         target[e] = exchangeRowTarget(scene, ch, el, e);
       }
 
+      // Empty voxels' views are refined as if they held the mean medium
+      // (one optical depth per voxel in a vacuum).
+      double viewSigma = effectiveCrossSection(1.0 / g.spacing.minCoeff(), g.spacing);
+      {
+        double sum = 0.0;
+        Index count = 0;
+        for (Index v = 0; v < nv; ++v) {
+          if (tree.sigma(v) > 0.0) {
+            sum += tree.sigma(v);
+            ++count;
+          }
+        }
+        if (count > 0) {
+          viewSigma = sum / double(count);
+        }
+      }
+
       IterationState state;
       state.x = x0;
       state.dx = x0;
@@ -308,7 +335,9 @@ Solution solveHierarchical(const Scene& scene,
         LinkRefinement refinement;
         refinement.nearRadius = opt.nearRadius;
         refinement.tolerance = linkTolerance;
-        refinement.radiosity = nodeRadiosity(tree, el, state.x);
+        refinement.viewSigma = viewSigma;
+        refinement.radiosity =
+          nodeRadiosity(tree, el, state.x, kRadiosityFloor * maxAbs(state.x));
         refinement.powerScale = std::max(1e-300, reduceSum(n, [&](Index e) {
                                            return el.isFront(e) ? 0.0 : state.x[e] * target[e];
                                          }));

@@ -34,13 +34,40 @@ double halfChord(const Grid& g)
   return 2.0 * h.prod() / (2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]));
 }
 
-/// sigma of a node towards direction w (pointing away from it).
-double directedSigma(const ClusterTree& t, Index n, const Vec3& w)
+/// sigma of a node towards direction w (pointing away from it), for the
+/// error estimate: empty voxels count with viewSigma each, since their views
+/// (G of empty space) come from the same links.
+double directedSigma(const ClusterTree& t, Index n, const Vec3& w, double viewSigma)
 {
   if (!t.isPatch(n)) {
-    return t.sigma(n);
+    std::array<int, 3> lo, hi;
+    t.box(n, lo, hi);
+    const double voxels = double(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    return std::max(t.sigma(n), viewSigma * voxels);
   }
   return t.sigma(n) * std::max(0.0, faceInwardNormal(t.face(n)).dot(w));
+}
+
+/// Distance from c, inside node n's box, along the unit w to the box's
+/// boundary (0 for patch nodes, which have no inside).
+double exitDistance(const ClusterTree& t, Index n, const Vec3& c, const Vec3& w)
+{
+  if (t.isPatch(n)) {
+    return 0.0;
+  }
+  std::array<int, 3> lo, hi;
+  t.box(n, lo, hi);
+  const Grid& g = t.grid(0);
+  double d = std::numeric_limits<double>::infinity();
+  for (int a = 0; a < 3; ++a) {
+    const double h = g.spacing[a], o = g.origin[a];
+    if (w[a] > 0.0) {
+      d = std::min(d, (o + (hi[a] + 0.5) * h - c[a]) / w[a]);
+    } else if (w[a] < 0.0) {
+      d = std::min(d, (o + (lo[a] - 0.5) * h - c[a]) / w[a]);
+    }
+  }
+  return std::max(0.0, d);
 }
 
 /// Mean of d^2 / |x - y|^2 over two voxels whose centres are d apart, by
@@ -98,6 +125,84 @@ struct SpreadCorrection
     return factor[i][j][k];
   }
 };
+
+/// 2-point Gauss-Legendre points of a leaf: 8 in a voxel, 4 on a patch.
+int leafPoints(const ClusterTree& t, Index n, std::array<Vec3, 8>& out)
+{
+  const Grid& g = t.grid(0);
+  const double q = 0.5 / std::sqrt(3.0);
+  const Vec3 c = t.centroid(n);
+  if (!t.isPatch(n)) {
+    for (int k = 0; k < 8; ++k) {
+      out[k] = c + Vec3((k & 1 ? q : -q) * g.spacing[0],
+                        (k & 2 ? q : -q) * g.spacing[1],
+                        (k & 4 ? q : -q) * g.spacing[2]);
+    }
+    return 8;
+  }
+  const auto ax = faceAxesInPlane(t.face(n));
+  for (int k = 0; k < 4; ++k) {
+    out[k] = c;
+    out[k][ax[0]] += (k & 1 ? q : -q) * g.spacing[ax[0]];
+    out[k][ax[1]] += (k & 2 ? q : -q) * g.spacing[ax[1]];
+  }
+  return 4;
+}
+
+/// Optical depth of the segment p -> q outside the boxes of a and b.
+double depthBetween(const ClusterTree& t, Index a, Index b, const Vec3& p, const Vec3& q)
+{
+  const Vec3 d = q - p;
+  const double r = d.norm();
+  if (!(r > 0.0)) {
+    return 0.0;
+  }
+  const Vec3 w = d / r;
+  const double t0 = exitDistance(t, a, p, w), t1 = r - exitDistance(t, b, q, -w);
+  return t1 > t0 ? t.pyramid().opticalDepth(p + t0 * w, p + t1 * w, 0).estimate : 0.0;
+}
+
+/// gamma of a link between two leaves a few voxels apart, where neither the
+/// medium between them nor the geometry is one line's: the transmittance
+/// is averaged over parallel lines between the Gauss points of two voxels
+/// (their 1/r^2 mean is the exact table's), and links with a patch
+/// integrate cosines, 1/r^2 and transmittance over the Gauss points of both
+/// ends, per unit of the centroids' cosines the gathering applies.
+double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
+{
+  std::array<Vec3, 8> pa, pb;
+  const int na = leafPoints(t, a, pa), nb = leafPoints(t, b, pb);
+  const Vec3 ca = t.centroid(a), cb = t.centroid(b);
+  const double rc = (cb - ca).norm();
+  if (!t.isPatch(a) && !t.isPatch(b)) {
+    double tau = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      tau += std::exp(-depthBetween(t, a, b, pa[k], pb[k]));
+    }
+    return spread * tau / (8.0 * kPi * rc * rc);
+  }
+  auto cosine = [&](Index n, const Vec3& w) {
+    return t.isPatch(n) ? faceInwardNormal(t.face(n)).dot(w) : 1.0;
+  };
+  const Vec3 wc = (cb - ca) / rc;
+  const double centre = cosine(a, wc) * cosine(b, -wc);
+  if (!(centre > 0.0)) {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (int i = 0; i < na; ++i) {
+    for (int j = 0; j < nb; ++j) {
+      const Vec3 d = pb[j] - pa[i];
+      const double r2 = d.squaredNorm();
+      const Vec3 w = d / std::sqrt(r2);
+      const double c = std::max(0.0, cosine(a, w)) * std::max(0.0, cosine(b, -w));
+      if (c > 0.0) {
+        sum += c * std::exp(-depthBetween(t, a, b, pa[i], pb[j])) / (kPi * r2);
+      }
+    }
+  }
+  return sum / (double(na) * nb * centre);
+}
 
 } // namespace
 
@@ -172,8 +277,12 @@ LinkSet refineLinks(const ClusterTree& tree,
           gamma = linkGamma(tree, a, b, opt.depthTolerance);
           if (leafA && leafB) {
             link = true;
-            if (!pa && !pb) {
-              gamma *= spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b));
+            if (gap <= kCorrectedReach + 1) {
+              gamma = closeLeafGamma(
+                tree,
+                a,
+                b,
+                pa || pb ? 1.0 : spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b)));
             }
           } else {
             const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
@@ -186,8 +295,16 @@ LinkSet refineLinks(const ClusterTree& tree,
             const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
             const double err = std::min(1.0, geometric) + std::min(1.0, 0.5 * (d.upper - d.lower)) +
                                std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
+            // The size of the exchange the link may get wrong: attenuated only
+            // by the medium between the two boxes, since the centroid line's
+            // depth inside a cluster can hide its lit surface entirely.
+            const double t0 = exitDistance(tree, a, ca, w), t1 = r - exitDistance(tree, b, cb, -w);
+            const double between =
+              t1 > t0 ? tree.pyramid().opticalDepth(ca + t0 * w, ca + t1 * w, level).lower : 0.0;
             const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
-            const double S = directedSigma(tree, a, w) * directedSigma(tree, b, -w) * gamma;
+            const double S = directedSigma(tree, a, w, opt.viewSigma) *
+                             directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /
+                             (kPi * r * r);
             link = x * S * err <= budget;
           }
         } else if (leafA && leafB) {

@@ -22,7 +22,8 @@
 /// spread of 1/r^2 over the two nodes ((rho_A^2 + rho_B^2) / r^2), the
 /// heterogeneity of the medium between them (the width of the pyramid's
 /// optical-depth bounds at the link's level) and the optical size of each
-/// cluster ((kappa_t rho)^2 / 4). x is each node's largest radiosity.
+/// cluster ((kappa_t rho)^2 / 4). x is each node's largest radiosity; in
+/// S, empty voxels count with LinkRefinement::viewSigma.
 /// Pairs closer than that at the voxels are left to the near field.
 #pragma once
 
@@ -41,6 +42,9 @@ struct LinkRefinement
   double powerScale = 1.0;      ///< total power leaving all elements [W]
   std::vector<float> radiosity; ///< per tree node, the largest radiosity under it
   double depthTolerance = 0.01; ///< optical-depth error of tau along a link
+  /// Cross-section an empty voxel counts with in the error estimate, so that
+  /// the views of empty space (their G) are refined like a typical voxel's.
+  double viewSigma = 0.0;
 };
 
 struct LinkSet

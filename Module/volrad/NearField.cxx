@@ -425,10 +425,11 @@ NearField computeNearField(const Scene& scene,
         for (int dx = -r; dx <= r && !seesSomething; ++dx) {
           const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
           if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
-            seesSomething = true; // a patch
-          } else {
-            seesSomething = el.full[g.index(i, j, k)] >= 0;
+            continue;
           }
+          // An element, or a boundary voxel: the patches behind it are near.
+          seesSomething = el.full[g.index(i, j, k)] >= 0 || i == 0 || j == 0 || k == 0 ||
+                          i == g.dims[0] - 1 || j == g.dims[1] - 1 || k == g.dims[2] - 1;
         }
       }
     }

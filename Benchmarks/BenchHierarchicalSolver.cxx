@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The hierarchical solver's benchmark (issue 4): time, peak memory, links,
+// shots and energy-balance residual on the three benchmark scenes
+// (BenchmarkScenes.h) at 32^3, 64^3, 128^3 and 256^3, or at the sizes and
+// scenes given:
+//   BenchHierarchicalSolver [--scenes a,b,c] [--epsilon E] [--link-tolerance T]
+//                           [--threads N] [--mc] [N ...]
+// Each run is a child process, so its peak resident memory is its own; a
+// run that fails (memory refused, solver error) prints its message.
+// With --mc, G of the cube along the x axis through the light is compared
+// with the track-length Monte Carlo estimator of the same medium.
+#include "BenchmarkScenes.h"
+
+#include "volrad/HierarchicalSolver.h"
+#include "volrad/MonteCarlo.h"
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace volrad;
+
+namespace {
+
+struct Figures
+{
+  double seconds = 0, nearSeconds = 0, linkSeconds = 0, iterationSeconds = 0;
+  double links = 0, shots = 0, iterations = 0, residual = 0, estimatedMiB = 0;
+  double krylov = 0, converged = 0;
+  char error[256] = {};
+};
+
+Figures run(const std::string& name, int n, const HierarchicalOptions& options)
+{
+  Figures f;
+  try {
+    const Scene s = bench::benchmarkScene(name, n);
+    HierarchicalReport report;
+    const Solution sol = solveHierarchical(s, options, &report);
+    f.seconds = sol.stats.seconds;
+    f.nearSeconds = report.nearSeconds;
+    f.linkSeconds = report.linkSeconds;
+    f.iterationSeconds = report.iterationSeconds;
+    f.links = double(sol.stats.links);
+    f.shots = double(report.shots);
+    f.iterations = double(sol.stats.iterations);
+    f.residual = sol.energy[0].relativeResidual();
+    f.estimatedMiB = double(sol.stats.estimatedBytes) / (1 << 20);
+    f.krylov = report.usedKrylov ? 1 : 0;
+    f.converged = sol.stats.converged ? 1 : 0;
+  } catch (const std::exception& e) {
+    std::snprintf(f.error, sizeof(f.error), "%s", e.what());
+  }
+  return f;
+}
+
+/// G along the x axis through the cube's centre: solver against Monte Carlo.
+void compareCubeAxis(int n, const HierarchicalOptions& options)
+{
+  const Scene s = bench::cubeScene61(n);
+  const Solution sol = solveHierarchical(s, options);
+  MonteCarloOptions mc;
+  mc.photons = 4000000;
+  const MonteCarloEstimate ref = estimateMonteCarlo(s, mc);
+  const Grid& g = s.grid;
+  const int j = n / 2, k = n / 2;
+  std::printf("cube %d^3: G along x through the light (y, z index %d), hierarchical vs "
+              "transport Monte Carlo\n",
+              n,
+              j);
+  std::printf("%6s %12s %12s %10s %8s\n", "i", "G", "G (MC)", "MC sigma", "diff");
+  double sum2 = 0.0;
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    const Index v = g.index(i, j, k);
+    const double a = sol.G[v], b = ref.G[v], sd = ref.GStdErr[v];
+    const double d = b > 0.0 ? a / b - 1.0 : 0.0;
+    if (i % std::max(1, n / 16) == 0 || i == n / 2) {
+      std::printf("%6d %12.5g %12.5g %9.2f%% %+7.2f%%\n", i, a, b, 100.0 * sd / b, 100.0 * d);
+    }
+    sum2 += d * d;
+    ++count;
+  }
+  std::printf("rms relative difference along the axis: %.2f%%\n", 100.0 * std::sqrt(sum2 / count));
+}
+
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<int> sizes;
+  std::vector<std::string> scenes = { "phantom", "cloud", "cube" };
+  bool mc = false;
+  HierarchicalOptions options;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--scenes") == 0 && i + 1 < argc) {
+      scenes.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string item; std::getline(list, item, ',');) {
+        scenes.push_back(item);
+      }
+    } else if (std::strcmp(argv[i], "--epsilon") == 0 && i + 1 < argc) {
+      options.epsilon = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--link-tolerance") == 0 && i + 1 < argc) {
+      options.linkTolerance = std::atof(argv[++i]);
+    } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
+      options.threads = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--mc") == 0) {
+      mc = true;
+    } else {
+      sizes.push_back(std::atoi(argv[i]));
+    }
+  }
+  if (sizes.empty()) {
+    sizes = { 32, 64, 128, 256 };
+  }
+  std::printf("%-8s %5s %8s %8s %8s %8s %9s %10s %10s %6s %10s %9s\n",
+              "scene",
+              "grid",
+              "seconds",
+              "near s",
+              "links s",
+              "iter s",
+              "peak MiB",
+              "links",
+              "shots",
+              "iters",
+              "residual",
+              "notes");
+  for (const std::string& name : scenes) {
+    for (int n : sizes) {
+      int pipefd[2];
+      if (pipe(pipefd) != 0) {
+        return 1;
+      }
+      std::fflush(stdout);
+      const pid_t pid = fork();
+      if (pid == 0) {
+        close(pipefd[0]);
+        const Figures f = run(name, n, options);
+        const bool ok = write(pipefd[1], &f, sizeof(f)) == sizeof(f);
+        _exit(ok ? 0 : 1);
+      }
+      close(pipefd[1]);
+      Figures f;
+      const bool got = read(pipefd[0], &f, sizeof(f)) == sizeof(f);
+      close(pipefd[0]);
+      int status = 0;
+      struct rusage usage;
+      wait4(pid, &status, 0, &usage);
+      if (!got) {
+        std::printf("%-8s %4d^3 crashed (status %d)\n", name.c_str(), n, status);
+      } else if (f.error[0]) {
+        std::printf("%-8s %4d^3 error: %s\n", name.c_str(), n, f.error);
+      } else {
+        std::printf("%-8s %4d^3 %8.2f %8.2f %8.2f %8.2f %9.1f %10.3g %10.3g %6.0f %10.2g %9s\n",
+                    name.c_str(),
+                    n,
+                    f.seconds,
+                    f.nearSeconds,
+                    f.linkSeconds,
+                    f.iterationSeconds,
+                    usage.ru_maxrss / 1024.0,
+                    f.links,
+                    f.shots,
+                    f.iterations,
+                    f.residual,
+                    f.converged ? (f.krylov ? "krylov" : "") : "UNCONV");
+      }
+    }
+  }
+  if (mc) {
+    compareCubeAxis(sizes.front(), options);
+  }
+  return 0;
+}
