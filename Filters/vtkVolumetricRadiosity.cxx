@@ -16,10 +16,10 @@
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
 
-#include "volrad/DenseSolver.h"
 #include "volrad/Error.h"
 #include "volrad/Normals.h"
 #include "volrad/SceneDescription.h"
+#include "volrad/Solve.h"
 
 #include <cmath>
 #include <string>
@@ -252,17 +252,11 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     if (!missing.empty()) {
       vtkWarningMacro("the input has no point-data array " << missing << ": taken as zero");
     }
-    volrad::DenseSolverOptions options;
-    options.threads = this->NumberOfThreads;
-    options.progress = [this](double f) {
-      this->UpdateProgress(f);
-      return !this->GetAbortExecute();
-    };
-    if (description.solver.method == "hierarchical") {
-      vtkWarningMacro(
-        "the hierarchical solver is not available yet; solving with the dense solver");
-    }
-    const volrad::Solution solution = volrad::solveDense(scene, options);
+    const volrad::Solution solution =
+      volrad::solve(scene, description.solver, this->NumberOfThreads, [this](double f) {
+        this->UpdateProgress(f);
+        return !this->GetAbortExecute();
+      });
 
     output->ShallowCopy(input);
     const int C = solution.channels;

@@ -6,6 +6,7 @@
 #include "volrad/EnergyBalance.h"
 #include "volrad/FarField.h"
 #include "volrad/LinkSet.h"
+#include "volrad/Memory.h"
 #include "volrad/NearField.h"
 #include "volrad/ZonalSystem.h"
 
@@ -33,6 +34,9 @@ using Vector = Eigen::VectorXd;
 /// Radiosity every element counts with in the link refinement, relative to
 /// the largest.
 constexpr double kRadiosityFloor = 1e-2;
+
+/// How much coarser the first pass's links are than the final ones.
+constexpr double kFirstPassCoarsening = 10.0;
 
 /// Deterministic parallel reductions: the same split whatever the threads.
 template<class F>
@@ -261,6 +265,20 @@ Solution solveHierarchical(const Scene& scene,
     throw Error("hierarchical solver: epsilon must be > 0, linkTolerance >= 0, maxIterations >= 1 "
                 "and the near radius 1 to 3");
   }
+  // Memory: what every voxel costs whatever the links (near-field stencil,
+  // element vectors, hierarchy, direct light, fields), then the links.
+  const double memoryLimit =
+    opt.memoryLimitBytes > 0.0 ? opt.memoryLimitBytes : 0.5 * double(physicalMemoryBytes());
+  const double perVoxel = 4.0 * std::pow(2 * opt.nearRadius + 1, 3) + 400.0 + 40.0 * scene.channels;
+  const double baseBytes = perVoxel * double(scene.grid.voxelCount());
+  if (baseBytes > memoryLimit) {
+    std::ostringstream msg;
+    msg << "the hierarchical solve of " << scene.grid.voxelCount() << " voxels needs about "
+        << baseBytes / (1 << 20) << " MiB before any link, over its memory budget of "
+        << memoryLimit / (1 << 20) << " MiB";
+    throw Error(msg.str());
+  }
+  const std::size_t maxLinks = std::size_t((memoryLimit - baseBytes) / double(kBytesPerLink));
   HierarchicalReport report;
   const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 1e-4;
   const Grid& g = scene.grid;
@@ -334,10 +352,11 @@ Solution solveHierarchical(const Scene& scene,
         t = Clock::now();
         LinkRefinement refinement;
         refinement.nearRadius = opt.nearRadius;
-        refinement.tolerance = linkTolerance;
+        // The first pass only estimates where the light goes: coarser links.
+        refinement.tolerance = pass == 0 ? kFirstPassCoarsening * linkTolerance : linkTolerance;
         refinement.viewSigma = viewSigma;
-        refinement.radiosity =
-          nodeRadiosity(tree, el, state.x, kRadiosityFloor * maxAbs(state.x));
+        refinement.maxLinks = std::max<std::size_t>(1, maxLinks);
+        refinement.radiosity = nodeRadiosity(tree, el, state.x, kRadiosityFloor * maxAbs(state.x));
         refinement.powerScale = std::max(1e-300, reduceSum(n, [&](Index e) {
                                            return el.isFront(e) ? 0.0 : state.x[e] * target[e];
                                          }));

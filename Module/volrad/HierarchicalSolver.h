@@ -50,6 +50,10 @@ struct HierarchicalOptions
   int maxIterations = 1000000;
   Iteration iteration = Iteration::Automatic;
   int nearRadius = 1;
+  /// The solve refuses with volrad::Error, before it allocates what would
+  /// pass it, when its structures would need more (0: half the machine's
+  /// physical memory).
+  double memoryLimitBytes = 0.0;
   QuadratureSettings quadrature;
   int threads = 0; ///< 0: all cores; 1: single-threaded (bit-for-bit repeatable, as is any count)
   ProgressCallback progress;

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace volrad {
 
@@ -274,16 +275,13 @@ LinkSet refineLinks(const ClusterTree& tree,
         bool link = false;
         double gamma = 0.0;
         if (gap > opt.nearRadius) {
-          gamma = linkGamma(tree, a, b, opt.depthTolerance);
           if (leafA && leafB) {
             link = true;
-            if (gap <= kCorrectedReach + 1) {
-              gamma = closeLeafGamma(
-                tree,
-                a,
-                b,
-                pa || pb ? 1.0 : spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b)));
-            }
+            gamma =
+              gap <= kCorrectedReach + 1
+                ? closeLeafGamma(
+                    tree, a, b, pa || pb ? 1.0 : spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b)))
+                : linkGamma(tree, a, b, opt.depthTolerance);
           } else {
             const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
             const double r = (cb - ca).norm();
@@ -306,6 +304,9 @@ LinkSet refineLinks(const ClusterTree& tree,
                              directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /
                              (kPi * r * r);
             link = x * S * err <= budget;
+            if (link) {
+              gamma = linkGamma(tree, a, b, opt.depthTolerance);
+            }
           }
         } else if (leafA && leafB) {
           continue; // the near field holds this pair
@@ -337,6 +338,14 @@ LinkSet refineLinks(const ClusterTree& tree,
       std::vector<Pair>().swap(l);
     });
     progress.report(std::min(0.9, 0.1 * ++round));
+    if (opt.maxLinks > 0) {
+      std::size_t count = todo.size();
+      accepted.combine_each([&](const std::vector<Accepted>& l) { count += l.size(); });
+      if (count > opt.maxLinks) {
+        throw Error("the hierarchical solve needs more than " + std::to_string(opt.maxLinks) +
+                    " links, over its memory budget: raise solver.epsilon or the budget");
+      }
+    }
   }
 
   // Both directions of every link, in a thread-independent order.

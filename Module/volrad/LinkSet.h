@@ -45,7 +45,12 @@ struct LinkRefinement
   /// Cross-section an empty voxel counts with in the error estimate, so that
   /// the views of empty space (their G) are refined like a typical voxel's.
   double viewSigma = 0.0;
+  /// Refinement stops with volrad::Error past this many links (0: no limit).
+  std::size_t maxLinks = 0;
 };
+
+/// Peak bytes one link costs while links are refined and stored.
+constexpr std::size_t kBytesPerLink = 64;
 
 struct LinkSet
 {

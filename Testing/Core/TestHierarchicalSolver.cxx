@@ -5,12 +5,14 @@
 // its error falls with epsilon; white furnace and energy balance.
 #include "TestScenes.h"
 #include "volrad/DenseSolver.h"
+#include "volrad/Error.h"
 #include "volrad/HierarchicalSolver.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 using namespace volrad;
 using namespace volrad::test;
@@ -151,4 +153,29 @@ TEST(HierarchicalSolver, SingleThreadedRunsAreBitIdentical)
   const Solution c = solveHierarchical(s, o);
   EXPECT_EQ(a.G, b.G); // deterministic whatever the thread count
   EXPECT_EQ(b.G, c.G);
+}
+
+TEST(HierarchicalSolver, RefusesOverItsMemoryBudget)
+{
+  const Scene s = pointLightScene(12);
+  HierarchicalOptions o;
+  // Below what the voxels alone need: refused before the near field.
+  o.memoryLimitBytes = 1e5;
+  try {
+    solveHierarchical(s, o);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("memory budget"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("before any link"), std::string::npos) << e.what();
+  }
+  // Enough for the voxels, not for the links the default tolerance needs
+  // (about 1e6 at this size): refused during the refinement.
+  o.memoryLimitBytes = 2e6 + 64.0 * 2e4;
+  try {
+    solveHierarchical(s, o);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("links, over its memory budget"), std::string::npos)
+      << e.what();
+  }
 }

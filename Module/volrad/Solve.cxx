@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "volrad/Solve.h"
+
+#include "volrad/DenseSolver.h"
+#include "volrad/Error.h"
+#include "volrad/HierarchicalSolver.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace volrad {
+
+Solution solve(const Scene& scene,
+               const SolverSettings& settings,
+               int threads,
+               const ProgressCallback& progress)
+{
+  if (settings.method == "dense") {
+    DenseSolverOptions o;
+    o.threads = threads;
+    o.progress = progress;
+    return solveDense(scene, o);
+  }
+  if (settings.method != "hierarchical") {
+    throw Error("unknown solver method '" + settings.method + "'");
+  }
+  HierarchicalOptions o;
+  o.epsilon = settings.epsilon;
+  o.maxIterations =
+    int(std::min<long long>(settings.maxIterations, std::numeric_limits<int>::max()));
+  o.threads = threads;
+  o.progress = progress;
+  return solveHierarchical(scene, o);
+}
+
+} // namespace volrad
