@@ -2,6 +2,7 @@
 #include "vtkVolumetricRadiosity.h"
 
 #include "vtkCellData.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
 #include "vtkDoubleArray.h"
 #include "vtkFieldData.h"
@@ -12,6 +13,7 @@
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
@@ -21,7 +23,9 @@
 #include "volrad/SceneDescription.h"
 #include "volrad/Solve.h"
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <string>
 
 vtkStandardNewMacro(vtkVolumetricRadiosity);
@@ -67,6 +71,31 @@ void readCoefficient(vtkImageData* input,
   }
 }
 
+/// The field the material maps and whose gradient gives the default normals:
+/// material.scalars, else the active scalars (empty when there are none).
+std::vector<double> materialScalars(vtkImageData* input, const volrad::SceneDescription& d)
+{
+  vtkPointData* pd = input->GetPointData();
+  vtkDataArray* s =
+    d.material.scalars.empty() ? pd->GetScalars() : pd->GetArray(d.material.scalars.c_str());
+  if (!s) {
+    if (!d.material.scalars.empty()) {
+      throw volrad::Error("the input has no numeric point-data array '" + d.material.scalars +
+                          "' (material.scalars)");
+    }
+    if (d.material.map.active()) {
+      throw volrad::Error("the material maps scalars, and the input has no active point scalars: "
+                          "name the array in material.scalars");
+    }
+    return {};
+  }
+  std::vector<double> values(input->GetNumberOfPoints());
+  for (Index v = 0; v < input->GetNumberOfPoints(); ++v) {
+    values[v] = s->GetComponent(v, 0);
+  }
+  return values;
+}
+
 void readNormals(vtkImageData* input, const volrad::SceneDescription& d, volrad::Scene& scene)
 {
   vtkPointData* pd = input->GetPointData();
@@ -86,20 +115,37 @@ void readNormals(vtkImageData* input, const volrad::SceneDescription& d, volrad:
     throw volrad::Error("the input has no point-data array '" + d.arrays.normals.name + "'");
   }
   // Default: the normalised negative gradient of the material scalars.
-  vtkDataArray* s =
-    d.material.scalars.empty() ? pd->GetScalars() : pd->GetArray(d.material.scalars.c_str());
-  if (!s) {
-    if (!d.material.scalars.empty()) {
-      throw volrad::Error("the input has no point-data array '" + d.material.scalars +
-                          "' (material.scalars)");
+  const std::vector<double> values = materialScalars(input, d);
+  if (!values.empty()) {
+    scene.normals = volrad::gradientNormals(scene.grid, values);
+  }
+}
+
+/// Nodes of a vtkPiecewiseFunction (linear between them: midpoints and
+/// sharpness are not used).
+volrad::TransferFunction toTransferFunction(vtkPiecewiseFunction* f)
+{
+  volrad::TransferFunction out;
+  for (int i = 0; i < f->GetSize(); ++i) {
+    double node[4];
+    f->GetNodeValue(i, node);
+    out.points.emplace_back(node[0], node[1]);
+  }
+  return out;
+}
+
+void toTransferFunctions(vtkColorTransferFunction* f, volrad::TransferFunction* rgb)
+{
+  for (int c = 0; c < 3; ++c) {
+    rgb[c].points.clear();
+  }
+  for (int i = 0; i < f->GetSize(); ++i) {
+    double node[6];
+    f->GetNodeValue(i, node);
+    for (int c = 0; c < 3; ++c) {
+      rgb[c].points.emplace_back(node[0], node[1 + c]);
     }
-    return; // no normals: fine unless sigma_d or E_D are used (validate says so)
   }
-  std::vector<double> values(input->GetNumberOfPoints());
-  for (Index v = 0; v < input->GetNumberOfPoints(); ++v) {
-    values[v] = s->GetComponent(v, 0);
-  }
-  scene.normals = volrad::gradientNormals(scene.grid, values);
 }
 
 volrad::Scene makeScene(vtkImageData* input,
@@ -135,12 +181,16 @@ volrad::Scene makeScene(vtkImageData* input,
   }
   d.applyTo(scene);
   scene.allocate();
+  readNormals(input, d, scene);
+  // The material first: arrays the input has win, coefficient by coefficient.
+  if (d.material.map.active()) {
+    volrad::applyMaterial(d.material.map, materialScalars(input, d), scene);
+  }
   readCoefficient(input, d.arrays.absorption, d.channels, scene.kappaA, missing);
   readCoefficient(input, d.arrays.scattering, d.channels, scene.sigmaI, missing);
   readCoefficient(input, d.arrays.surfaceScattering, d.channels, scene.sigmaD, missing);
   readCoefficient(input, d.arrays.emission, d.channels, scene.emissionI, missing);
   readCoefficient(input, d.arrays.surfaceEmission, d.channels, scene.emissionD, missing);
-  readNormals(input, d, scene);
   return scene;
 }
 
@@ -208,14 +258,78 @@ void addStatistics(vtkFieldData* fd, const volrad::Solution& s)
   fd->AddArray(method);
 }
 
+/// The filter's material properties over the scene description's.
+void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescription& d)
+{
+  volrad::MaterialMap& m = d.material.map;
+  if (self->GetMaterialPreset() && *self->GetMaterialPreset()) {
+    d.material.preset = self->GetMaterialPreset();
+    m = volrad::materialPreset(self->GetMaterialPreset());
+  }
+  if (self->GetExtinctionFunction()) {
+    m.extinction = toTransferFunction(self->GetExtinctionFunction());
+  }
+  if (self->GetAlbedoFunction()) {
+    m.albedo = toTransferFunction(self->GetAlbedoFunction());
+  }
+  if (self->GetColorFunction()) {
+    toTransferFunctions(self->GetColorFunction(), m.color.data());
+  }
+  if (self->GetEmissionFunction()) {
+    toTransferFunctions(self->GetEmissionFunction(), m.emission.data());
+  }
+  if (self->GetSurfaceGradient() >= 0.0) {
+    m.surfaceGradient = self->GetSurfaceGradient();
+  }
+  if (!m.active() &&
+      (self->GetAlbedoFunction() || self->GetColorFunction() || self->GetEmissionFunction())) {
+    throw volrad::Error("the material needs an ExtinctionFunction (or a MaterialPreset) for its "
+                        "other functions to apply");
+  }
+  volrad::validateMaterial(m, "the filter's material");
+}
+
 } // namespace
 
 vtkVolumetricRadiosity::vtkVolumetricRadiosity() = default;
 
 vtkVolumetricRadiosity::~vtkVolumetricRadiosity()
 {
+  this->SetMaterialPreset(nullptr);
   this->SetSceneFileName(nullptr);
   this->SetSceneJSON(nullptr);
+}
+
+#define volradTransferFunctionProperty(Name, Type)                                                 \
+  void vtkVolumetricRadiosity::Set##Name(Type* f)                                                  \
+  {                                                                                                \
+    if (this->Name != f) {                                                                         \
+      this->Name = f;                                                                              \
+      this->Modified();                                                                            \
+    }                                                                                              \
+  }                                                                                                \
+  Type* vtkVolumetricRadiosity::Get##Name()                                                        \
+  {                                                                                                \
+    return this->Name;                                                                             \
+  }
+volradTransferFunctionProperty(ExtinctionFunction, vtkPiecewiseFunction);
+volradTransferFunctionProperty(AlbedoFunction, vtkPiecewiseFunction);
+volradTransferFunctionProperty(ColorFunction, vtkColorTransferFunction);
+volradTransferFunctionProperty(EmissionFunction, vtkColorTransferFunction);
+#undef volradTransferFunctionProperty
+
+vtkMTimeType vtkVolumetricRadiosity::GetMTime()
+{
+  vtkMTimeType t = this->Superclass::GetMTime();
+  for (vtkObject* f : std::initializer_list<vtkObject*>{ this->ExtinctionFunction,
+                                                         this->AlbedoFunction,
+                                                         this->ColorFunction,
+                                                         this->EmissionFunction }) {
+    if (f) {
+      t = std::max(t, f->GetMTime());
+    }
+  }
+  return t;
 }
 
 int vtkVolumetricRadiosity::RequestUpdateExtent(vtkInformation*,
@@ -247,6 +361,7 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     } else if (this->SceneFileName && *this->SceneFileName) {
       description = volrad::readSceneDescription(this->SceneFileName);
     }
+    applyMaterialProperties(this, description);
     std::string missing;
     const volrad::Scene scene = makeScene(input, description, missing);
     if (!missing.empty()) {
@@ -285,4 +400,11 @@ void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SceneJSON: " << (this->SceneJSON ? this->SceneJSON : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "MaterialPreset: " << (this->MaterialPreset ? this->MaterialPreset : "(none)")
+     << "\n";
+  os << indent << "ExtinctionFunction: " << this->ExtinctionFunction.Get() << "\n";
+  os << indent << "AlbedoFunction: " << this->AlbedoFunction.Get() << "\n";
+  os << indent << "ColorFunction: " << this->ColorFunction.Get() << "\n";
+  os << indent << "EmissionFunction: " << this->EmissionFunction.Get() << "\n";
+  os << indent << "SurfaceGradient: " << this->SurfaceGradient << "\n";
 }

@@ -22,6 +22,10 @@
 
 #include "VolRadFiltersModule.h" // for export macro
 #include "vtkImageAlgorithm.h"
+#include "vtkSmartPointer.h" // for the transfer functions
+
+class vtkColorTransferFunction;
+class vtkPiecewiseFunction;
 
 class VOLRADFILTERS_EXPORT vtkVolumetricRadiosity : public vtkImageAlgorithm
 {
@@ -53,6 +57,39 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  ///@{
+  /**
+   * Material: how the input's scalars (the scene's material.scalars, else the
+   * active scalars) become optical coefficients, in the idiom of
+   * vtkVolumeProperty. Each of these replaces the same part of the scene
+   * file's material; coefficient arrays the input has still win.
+   * MaterialPreset: "ct", "ct-bone", "mr", "cloud" (README); empty: none.
+   * ExtinctionFunction: kappa_t [1/length] of the scalar.
+   * AlbedoFunction: the scattering albedo in [0, 1].
+   * ColorFunction: per-channel factor of the albedo (the colour of the
+   * scattered light) in [0, 1].
+   * EmissionFunction: E_I [W/m^2] per channel.
+   * SurfaceGradient: gradient magnitude [scalar / length] at which 63% of the
+   * scattering is surface-like (about the gradient normal); 0: isotropic;
+   * negative (default): the scene's or preset's.
+   */
+  vtkSetStringMacro(MaterialPreset);
+  vtkGetStringMacro(MaterialPreset);
+  void SetExtinctionFunction(vtkPiecewiseFunction* f);
+  vtkPiecewiseFunction* GetExtinctionFunction();
+  void SetAlbedoFunction(vtkPiecewiseFunction* f);
+  vtkPiecewiseFunction* GetAlbedoFunction();
+  void SetColorFunction(vtkColorTransferFunction* f);
+  vtkColorTransferFunction* GetColorFunction();
+  void SetEmissionFunction(vtkColorTransferFunction* f);
+  vtkColorTransferFunction* GetEmissionFunction();
+  vtkSetMacro(SurfaceGradient, double);
+  vtkGetMacro(SurfaceGradient, double);
+  ///@}
+
+  /** Includes the transfer functions' modification times. */
+  vtkMTimeType GetMTime() override;
+
 protected:
   vtkVolumetricRadiosity();
   ~vtkVolumetricRadiosity() override;
@@ -63,6 +100,12 @@ protected:
   char* SceneFileName = nullptr;
   char* SceneJSON = nullptr;
   int NumberOfThreads = 0;
+  char* MaterialPreset = nullptr;
+  vtkSmartPointer<vtkPiecewiseFunction> ExtinctionFunction;
+  vtkSmartPointer<vtkPiecewiseFunction> AlbedoFunction;
+  vtkSmartPointer<vtkColorTransferFunction> ColorFunction;
+  vtkSmartPointer<vtkColorTransferFunction> EmissionFunction;
+  double SurfaceGradient = -1.0;
 
 private:
   vtkVolumetricRadiosity(const vtkVolumetricRadiosity&) = delete;

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libvtk9-dev vtk9 python3-vtk9
+  libvtk9-dev vtk9 python3-vtk9 python3-dev
   libeigen3-dev libtbb-dev nlohmann-json3-dev
   libopenvdb-dev libboost-iostreams-dev
   libgtest-dev libgmock-dev libbenchmark-dev

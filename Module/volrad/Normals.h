@@ -10,9 +10,12 @@
 
 namespace volrad {
 
-/// Central differences inside, one-sided at the grid's edges, in world
-/// units. Where |gradient| <= threshold (relative to the largest gradient
-/// magnitude in the field) the normal is zero: no normal there.
+/// Gradient of a scalar field, per voxel in world units: central
+/// differences inside, one-sided at the grid's edges.
+std::vector<Vec3> scalarGradient(const Grid& grid, const std::vector<double>& scalars);
+
+/// The normalised negative gradient (scalarGradient). Where |gradient| <= threshold (relative to
+/// the largest gradient magnitude in the field) the normal is zero: no normal there.
 std::vector<Normal> gradientNormals(const Grid& grid,
                                     const std::vector<double>& scalars,
                                     double relativeThreshold = 1e-6);

@@ -189,6 +189,98 @@ void parseLights(const json& j, SceneDescription& d)
   }
 }
 
+/// [[x, y], ...] (or [[x, r, g, b], ...] with `columns` 4) into functions.
+void transferFunctions(const json& j,
+                       const std::string& key,
+                       TransferFunction* out,
+                       int outputs,
+                       bool allowGrey)
+{
+  if (!j.is_array() || j.empty()) {
+    fail(key, "must be a non-empty array of [scalar, value] points");
+  }
+  for (int c = 0; c < outputs; ++c) {
+    out[c].points.clear();
+  }
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string at = key + "[" + std::to_string(i) + "]";
+    const json& p = j[i];
+    const bool grey = p.is_array() && p.size() == 2 && allowGrey;
+    if (!p.is_array() || (!grey && int(p.size()) != outputs + 1)) {
+      fail(at,
+           outputs == 1 ? "must be [scalar, value]"
+                        : "must be [scalar, red, green, blue]" +
+                            std::string(allowGrey ? " or [scalar, value]" : ""));
+    }
+    const double x = number(p[0], at + "[0]");
+    for (int c = 0; c < outputs; ++c) {
+      out[c].points.emplace_back(
+        x, number(p[grey ? 1 : c + 1], at + "[" + std::to_string(grey ? 1 : c + 1) + "]"));
+    }
+  }
+}
+
+void parseMaterial(const json& j, MaterialSettings& m)
+{
+  allowOnly(j,
+            "material",
+            { "scalars",
+              "preset",
+              "extinction",
+              "albedo",
+              "color",
+              "emission",
+              "surface_gradient",
+              "relative",
+              "per_voxel" });
+  if (j.contains("scalars")) {
+    m.scalars = text(j["scalars"], "material.scalars");
+  }
+  // A preset first; the other keys replace its parts.
+  if (j.contains("preset")) {
+    m.preset = text(j["preset"], "material.preset");
+    try {
+      m.map = materialPreset(m.preset);
+    } catch (const Error& e) {
+      fail("material.preset", std::string("names an ") + e.what());
+    }
+  }
+  if (j.contains("extinction")) {
+    transferFunctions(j["extinction"], "material.extinction", &m.map.extinction, 1, false);
+  }
+  if (j.contains("albedo")) {
+    transferFunctions(j["albedo"], "material.albedo", &m.map.albedo, 1, false);
+  }
+  if (j.contains("color")) {
+    transferFunctions(j["color"], "material.color", m.map.color.data(), kMaxChannels, false);
+  }
+  if (j.contains("emission")) {
+    transferFunctions(
+      j["emission"], "material.emission", m.map.emission.data(), kMaxChannels, true);
+  }
+  if (j.contains("surface_gradient")) {
+    m.map.surfaceGradient = number(j["surface_gradient"], "material.surface_gradient");
+  }
+  for (const char* flag : { "relative", "per_voxel" }) {
+    if (j.contains(flag)) {
+      if (!j[flag].is_boolean()) {
+        fail(std::string("material.") + flag, "must be true or false");
+      }
+      (std::string(flag) == "relative" ? m.map.relative : m.map.perVoxel) = j[flag].get<bool>();
+    }
+  }
+  const bool any = j.contains("albedo") || j.contains("color") || j.contains("emission") ||
+                   j.contains("surface_gradient");
+  if (any && !m.map.active()) {
+    fail("material", "needs an 'extinction' (or a 'preset') for its other functions to apply");
+  }
+  try {
+    validateMaterial(m.map, "material");
+  } catch (const Error& e) {
+    throw Error(std::string("scene file: ") + e.what());
+  }
+}
+
 void parseSolver(const json& j, SolverSettings& s)
 {
   allowOnly(j, "solver", { "method", "epsilon", "max_iterations" });
@@ -250,14 +342,7 @@ SceneDescription parseSceneDescription(const std::string& jsonText)
     parseArrays(j["arrays"], d.arrays);
   }
   if (j.contains("material")) {
-    allowOnly(j["material"], "material", { "scalars", "preset" });
-    if (j["material"].contains("scalars")) {
-      d.material.scalars = text(j["material"]["scalars"], "material.scalars");
-    }
-    if (j["material"].contains("preset")) {
-      fail("material.preset '" + text(j["material"]["preset"], "material.preset") + "'",
-           "is unknown: this version has no material presets; give the coefficients as arrays");
-    }
+    parseMaterial(j["material"], d.material);
   }
   if (j.contains("boundary")) {
     const json& b = j["boundary"];

@@ -7,6 +7,7 @@
 /// message names the key (e.g. "solver.epsilon").
 #pragma once
 
+#include "volrad/Material.h"
 #include "volrad/Scene.h"
 
 #include <array>
@@ -34,7 +35,11 @@ struct ArrayNames
 
 struct MaterialSettings
 {
-  std::string scalars; ///< field whose gradient gives the default normals ("" = active scalars)
+  /// The scalar field the material maps, and whose gradient gives the
+  /// default normals ("" = the active scalars).
+  std::string scalars;
+  std::string preset; ///< the preset it started from, if any
+  MaterialMap map;    ///< active() when the material gives coefficients
 };
 
 struct SolverSettings

@@ -23,13 +23,16 @@ std::string errorOf(const std::string& text)
 
 TEST(SceneDescription, TheDocumentedExampleParses)
 {
-  // docs/scene-format.md's example, less the material preset.
+  // docs/scene-format.md's example, word for word.
   const SceneDescription d = parseSceneDescription(R"({
     "version": 1,
     "channels": 3,
     "arrays": { "absorption": "kappa_a", "scattering": "sigma_i", "surface_scattering": "sigma_d",
                 "emission": "E_I", "surface_emission": "E_D", "normals": "n" },
-    "material": { "scalars": "ImageScalars" },
+    "material": {
+      "scalars": "ImageScalars",
+      "preset": "ct-bone"
+    },
     "boundary": {
       "default": { "type": "open", "radiance": 0.0 },
       "zmin":    { "type": "wall", "reflectance": 0.5, "emission": 0.0 }
@@ -44,6 +47,8 @@ TEST(SceneDescription, TheDocumentedExampleParses)
   EXPECT_EQ(d.arrays.surfaceScattering.name, "sigma_d");
   EXPECT_TRUE(d.arrays.normals.required);
   EXPECT_EQ(d.material.scalars, "ImageScalars");
+  EXPECT_EQ(d.material.preset, "ct-bone");
+  EXPECT_TRUE(d.material.map.active());
   EXPECT_EQ(d.boundary[static_cast<int>(Face::ZMin)].type, BoundaryCondition::Type::Wall);
   EXPECT_DOUBLE_EQ(d.boundary[static_cast<int>(Face::ZMin)].reflectance[2], 0.5);
   EXPECT_EQ(d.boundary[static_cast<int>(Face::XMax)].type, BoundaryCondition::Type::Open);
@@ -96,8 +101,9 @@ TEST(SceneDescription, ErrorsNameTheKey)
             std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, "arrays": {"absorbtion": "k"}})").find("'arrays.absorbtion'"),
             std::string::npos);
-  EXPECT_NE(errorOf(R"({"version": 1, "material": {"preset": "ct-bone"}})").find("material.preset"),
-            std::string::npos);
+  EXPECT_NE(
+    errorOf(R"({"version": 1, "material": {"preset": "ct-marble"}})").find("material.preset"),
+    std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, )").find("malformed JSON"), std::string::npos);
   EXPECT_NE(errorOf(R"([1, 2])").find("must be an object"), std::string::npos);
 }
