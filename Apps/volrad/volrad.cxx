@@ -1,44 +1,122 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// volrad INPUT.vti [--scene SCENE.json] -o OUTPUT.vti [--threads N]
+// volrad INPUT [--scene SCENE.json] -o OUTPUT.vti [--shrink N] [--threads N]
 //
-// Reads a volume and a scene file (docs/scene-format.md), solves volumetric
-// radiosity and writes the input with the output arrays added. Errors go to
-// stderr with a non-zero exit; the output file is written atomically.
+// Reads a volume (any image format VTK reads) and a scene file (docs/scene-format.md), solves
+// volumetric radiosity and writes the input with the output arrays added. Errors go to stderr with
+// a non-zero exit; the output file is written atomically.
 #include "vtkVolumetricRadiosity.h"
 
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
+#include "vtkDICOMImageReader.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkImageShrink3D.h"
+#include "vtkMetaImageReader.h"
 #include "vtkNew.h"
+#include "vtkNrrdReader.h"
 #include "vtkPointData.h"
+#include "vtkSLCReader.h"
+#include "vtkSmartPointer.h"
+#include "vtkStructuredPointsReader.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <string>
 
 namespace {
 
-const char* kUsage = R"(usage: volrad INPUT.vti [--scene SCENE.json] -o OUTPUT.vti [--threads N]
+const char* kUsage =
+  R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti [--shrink N] [--threads N]
 
-Solves volumetric radiosity in the volume INPUT (VTK XML image data, .vti)
-lit as the scene file says (docs/scene-format.md; without one, the defaults
-and the input's arrays kappa_a, sigma_i, sigma_d, E_I, E_D, n apply) and
-writes OUTPUT.vti: the input's arrays plus IncidentRadiation,
+Solves volumetric radiosity in the volume INPUT lit as the scene file says
+(docs/scene-format.md; without one, the defaults and the input's arrays
+kappa_a, sigma_i, sigma_d, E_I, E_D, n apply; a "material" maps its scalars)
+and writes OUTPUT.vti: the input's arrays plus IncidentRadiation,
 IsotropicRadiosity, DiffuseRadiosity, FrontIncidentRadiation and
 AbsorbedPower, and the solve's statistics as field data.
+
+INPUT: VTK XML image data (.vti), MetaImage (.mhd, .mha), NRRD (.nrrd,
+.nhdr), SLC (.slc), legacy VTK structured points (.vtk), or a directory of
+DICOM files.
 
 options:
   --scene FILE   scene file (JSON, version 1)
   -o, --output   output .vti file (written only if the solve succeeds)
+  --shrink N     solve on a grid N times coarser along each axis (averaging)
   --threads N    threads (default 0: all cores; 1: deterministic)
   -h, --help     this text
 )";
+
+std::string lowerExtension(const std::string& path)
+{
+  std::string e = std::filesystem::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+/// The reader for a path: by its extension, or DICOM for a directory.
+/// Null (and `error` set) for a format volrad does not read.
+vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path, std::string& error)
+{
+  if (std::filesystem::is_directory(path)) {
+    auto r = vtkSmartPointer<vtkDICOMImageReader>::New();
+    r->SetDirectoryName(path.c_str());
+    return r;
+  }
+  const std::string e = lowerExtension(path);
+  if (e == ".vti") {
+    auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    r->SetFileName(path.c_str());
+    return r;
+  }
+  if (e == ".mhd" || e == ".mha") {
+    auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+    r->SetFileName(path.c_str());
+    return r;
+  }
+  if (e == ".nrrd" || e == ".nhdr") {
+    auto r = vtkSmartPointer<vtkNrrdReader>::New();
+    r->SetFileName(path.c_str());
+    return r;
+  }
+  if (e == ".slc") {
+    auto r = vtkSmartPointer<vtkSLCReader>::New();
+    r->SetFileName(path.c_str());
+    return r;
+  }
+  if (e == ".vtk") {
+    auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
+    r->SetFileName(path.c_str());
+    return r;
+  }
+  error = "'" + path + "': unknown volume format '" + e +
+          "' (volrad reads .vti, .mhd, .mha, .nrrd, .nhdr, .slc, .vtk and DICOM directories)";
+  return nullptr;
+}
+
+/// A progress bar on stderr when it is a terminal.
+void showProgress(vtkObject*, unsigned long, void*, void* data)
+{
+  const double f = *static_cast<double*>(data);
+  const int width = 40, done = int(f * width + 0.5);
+  std::fprintf(stderr,
+               "\rvolrad: solving [%s%s] %3d%%",
+               std::string(done, '#').c_str(),
+               std::string(width - done, ' ').c_str(),
+               int(100.0 * f + 0.5));
+  std::fflush(stderr);
+}
 
 /// Collects the error messages of VTK objects instead of printing them.
 struct ErrorCollector
@@ -77,7 +155,7 @@ std::string fieldValue(vtkImageData* image, const char* name)
 int main(int argc, char* argv[])
 {
   std::string input, scene, output;
-  int threads = 0;
+  int threads = 0, shrink = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* what) -> std::string {
@@ -94,18 +172,20 @@ int main(int argc, char* argv[])
         scene = value("--scene");
       } else if (arg == "-o" || arg == "--output") {
         output = value("-o");
-      } else if (arg == "--threads") {
-        const std::string v = value("--threads");
+      } else if (arg == "--threads" || arg == "--shrink") {
+        const std::string v = value(arg.c_str());
         std::size_t used = 0;
         long n = -1;
         try {
           n = std::stol(v, &used);
         } catch (const std::exception&) {
         }
-        if (used != v.size() || n < 0 || n > 4096) {
-          return fail("--threads takes a whole number from 0 to 4096, not '" + v + "'");
+        const long lo = arg == "--threads" ? 0 : 1;
+        if (used != v.size() || n < lo || n > 4096) {
+          return fail(arg + " takes a whole number from " + std::to_string(lo) + " to 4096, not '" +
+                      v + "'");
         }
-        threads = int(n);
+        (arg == "--threads" ? threads : shrink) = int(n);
       } else if (!arg.empty() && arg[0] == '-') {
         return fail("unknown option '" + arg + "'\n" + kUsage);
       } else if (input.empty()) {
@@ -121,11 +201,14 @@ int main(int argc, char* argv[])
     std::cerr << kUsage;
     return 2;
   }
-  if (!std::ifstream(input)) {
+  if (!std::filesystem::exists(input) ||
+      (!std::filesystem::is_directory(input) && !std::ifstream(input))) {
     return fail("cannot read the input file '" + input + "'");
   }
-  if (input.size() < 4 || input.substr(input.size() - 4) != ".vti") {
-    return fail("'" + input + "': this version reads VTK XML image data (.vti) only");
+  std::string formatError;
+  vtkSmartPointer<vtkAlgorithm> reader = makeReader(input, formatError);
+  if (!reader) {
+    return fail(formatError);
   }
 
   // Fail before a long solve if the output cannot be written at all.
@@ -143,23 +226,39 @@ int main(int argc, char* argv[])
   onError->SetCallback(&ErrorCollector::callback);
   onError->SetClientData(&errors);
 
-  vtkNew<vtkXMLImageDataReader> reader;
-  reader->SetFileName(input.c_str());
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->Update();
-  if (!errors.messages.empty() || reader->GetOutput()->GetNumberOfPoints() == 0) {
+  vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!errors.messages.empty() || !image || image->GetNumberOfPoints() == 0) {
     return fail("cannot read '" + input + "' as image data" +
                 (errors.messages.empty() ? "" : ": " + errors.messages));
   }
+  vtkNew<vtkImageShrink3D> shrinker;
+  vtkAlgorithm* source = reader;
+  if (shrink > 1) {
+    shrinker->SetShrinkFactors(shrink, shrink, shrink);
+    shrinker->AveragingOn();
+    shrinker->SetInputConnection(reader->GetOutputPort());
+    source = shrinker;
+  }
 
   vtkNew<vtkVolumetricRadiosity> filter;
-  filter->SetInputConnection(reader->GetOutputPort());
+  filter->SetInputConnection(source->GetOutputPort());
   if (!scene.empty()) {
     filter->SetSceneFileName(scene.c_str());
   }
   filter->SetNumberOfThreads(threads);
   filter->AddObserver(vtkCommand::ErrorEvent, onError);
+  vtkNew<vtkCallbackCommand> onProgress;
+  onProgress->SetCallback(&showProgress);
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) {
+    filter->AddObserver(vtkCommand::ProgressEvent, onProgress);
+  }
   filter->Update();
+  if (terminal) {
+    std::fprintf(stderr, "\n");
+  }
   vtkImageData* result = filter->GetOutput();
   if (!errors.messages.empty() || !result->GetPointData()->GetArray("IncidentRadiation")) {
     return fail(errors.messages.empty() ? "the solve failed" : errors.messages);

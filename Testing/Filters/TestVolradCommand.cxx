@@ -4,14 +4,19 @@
 #include "vtkAbstractArray.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkMetaImageWriter.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkStructuredPointsWriter.h"
 #include "vtkVariant.h"
 #include "vtkXMLImageDataReader.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -107,4 +112,105 @@ TEST(VolradCommand, ErrorsExitNonZeroWithAMessageAndNoOutput)
   r = run("--help");
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.output.find("usage: volrad"), std::string::npos);
+}
+
+namespace {
+
+/// A 10x9x8 density blob as the active scalars, with 0.5 spacing.
+vtkSmartPointer<vtkImageData> densityVolume()
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(10, 9, 8);
+  image->SetSpacing(0.5, 0.5, 0.5);
+  vtkNew<vtkFloatArray> density;
+  density->SetName("density");
+  density->SetNumberOfTuples(image->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i) {
+    double x[3];
+    image->GetPoint(i, x);
+    const double r2 =
+      (x[0] - 2.25) * (x[0] - 2.25) + (x[1] - 2.0) * (x[1] - 2.0) + (x[2] - 1.75) * (x[2] - 1.75);
+    density->SetValue(i, float(std::max(0.0, 1.0 - r2 / 4.0)));
+  }
+  image->GetPointData()->SetScalars(density);
+  return image;
+}
+
+/// Reads an output .vti; null if it does not exist.
+vtkSmartPointer<vtkImageData> readOutput(const std::string& path)
+{
+  if (!exists(path)) {
+    return nullptr;
+  }
+  vtkNew<vtkXMLImageDataReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+} // namespace
+
+TEST(VolradCommand, ReadsOtherFormatsAndMapsTheirScalarsWithAMaterial)
+{
+  auto image = densityVolume();
+  const std::string mhd = kOut + "/blob.mhd", vtk = kOut + "/blob.vtk";
+  vtkNew<vtkMetaImageWriter> mw;
+  mw->SetFileName(mhd.c_str());
+  mw->SetInputData(image);
+  mw->Write();
+  vtkNew<vtkStructuredPointsWriter> sw;
+  sw->SetFileName(vtk.c_str());
+  sw->SetInputData(image);
+  sw->Write();
+  const std::string scene = kOut + "/cloud.json";
+  std::ofstream(scene) << R"({"version": 1, "material": {"preset": "cloud"},
+    "lights": [{"type": "directional", "direction": [0, 0, -1], "irradiance": 1}],
+    "solver": {"method": "dense"}})";
+  for (const std::string& in : { mhd, vtk }) {
+    const std::string out = kOut + "/blob-lit.vti";
+    std::remove(out.c_str());
+    const CommandRun r = run(in + " --scene " + scene + " -o " + out);
+    ASSERT_EQ(r.code, 0) << in << ": " << r.output;
+    auto lit = readOutput(out);
+    ASSERT_NE(lit, nullptr);
+    EXPECT_EQ(lit->GetNumberOfPoints(), image->GetNumberOfPoints()) << in;
+    auto* g = lit->GetPointData()->GetArray("IncidentRadiation");
+    ASSERT_NE(g, nullptr) << in;
+    double range[2];
+    g->GetRange(range);
+    EXPECT_GT(range[1], 0.0) << in;
+    const double residual =
+      lit->GetFieldData()->GetArray("EnergyBalanceResidual")->GetComponent(0, 0);
+    EXPECT_LT(residual, 1e-6) << in;
+  }
+  // --shrink 2: the solve on a grid half as fine along each axis.
+  const std::string out = kOut + "/blob-shrunk.vti";
+  std::remove(out.c_str());
+  const CommandRun r = run(mhd + " --shrink 2 --scene " + scene + " -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  auto lit = readOutput(out);
+  ASSERT_NE(lit, nullptr);
+  int dims[3];
+  lit->GetDimensions(dims);
+  EXPECT_EQ(dims[0], 5);
+  EXPECT_EQ(dims[1], 4);
+  EXPECT_EQ(dims[2], 4);
+}
+
+TEST(VolradCommand, UnknownFormatsAndBadShrinkAreNamed)
+{
+  const std::string bogus = kOut + "/volume.xyz";
+  std::ofstream(bogus) << "not a volume";
+  CommandRun r = run(bogus + " -o " + kOut + "/x.vti");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("unknown volume format '.xyz'"), std::string::npos) << r.output;
+  const std::string broken = kOut + "/broken.mhd";
+  std::ofstream(broken) << "ObjectType = Image\nNDims = 3\nDimSize = 4 4\n";
+  r = run(broken + " -o " + kOut + "/x.vti");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("broken.mhd"), std::string::npos) << r.output;
+  EXPECT_FALSE(exists(kOut + "/x.vti"));
+  r = run(kData + "/neghip16.vti --shrink 0 -o " + kOut + "/x.vti");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("--shrink"), std::string::npos) << r.output;
 }
