@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkVolumetricRadiosity.h"
 
+#include "vtkCamera.h"
+#include "vtkCellArray.h"
 #include "vtkCellData.h"
 #include "vtkColorTransferFunction.h"
 #include "vtkDataArray.h"
@@ -10,16 +12,24 @@
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
 #include "vtkMatrix3x3.h"
 #include "vtkNew.h"
 #include "vtkObjectFactory.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
+#include "vtkSmartPointer.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 #include "vtkStringArray.h"
+#include "vtkUnsignedCharArray.h"
 
 #include "volrad/Error.h"
 #include "volrad/Normals.h"
+#include "volrad/RenderColors.h"
 #include "volrad/SceneDescription.h"
 #include "volrad/Solve.h"
 
@@ -258,6 +268,46 @@ void addStatistics(vtkFieldData* fd, const volrad::Solution& s)
   fd->AddArray(method);
 }
 
+/// One quad per wall patch, with B and H as cell data.
+vtkSmartPointer<vtkPolyData> makeWalls(const volrad::Scene& scene, const volrad::Solution& sol)
+{
+  const volrad::Grid& g = scene.grid;
+  const int C = sol.channels;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> quads;
+  vtkNew<vtkFloatArray> radiosity, irradiance;
+  radiosity->SetName("Radiosity");
+  irradiance->SetName("Irradiance");
+  radiosity->SetNumberOfComponents(C);
+  irradiance->SetNumberOfComponents(C);
+  for (Index p = 0; p < g.patchCount(); ++p) {
+    const volrad::Face f = g.patchLocation(p).face;
+    if (scene.boundary[static_cast<int>(f)].type != volrad::BoundaryCondition::Type::Wall) {
+      continue;
+    }
+    const auto ax = volrad::faceAxesInPlane(f);
+    const volrad::Vec3 lo = g.patchLower(p);
+    vtkIdType ids[4];
+    for (int k = 0; k < 4; ++k) {
+      volrad::Vec3 x = lo;
+      x[ax[0]] += ((k == 1 || k == 2) ? 1.0 : 0.0) * g.spacing[ax[0]];
+      x[ax[1]] += (k >= 2 ? 1.0 : 0.0) * g.spacing[ax[1]];
+      ids[k] = points->InsertNextPoint(x[0], x[1], x[2]);
+    }
+    quads->InsertNextCell(4, ids);
+    for (int c = 0; c < C; ++c) {
+      radiosity->InsertNextValue(float(sol.B[std::size_t(p) * C + c]));
+      irradiance->InsertNextValue(float(sol.H[std::size_t(p) * C + c]));
+    }
+  }
+  auto walls = vtkSmartPointer<vtkPolyData>::New();
+  walls->SetPoints(points);
+  walls->SetPolys(quads);
+  walls->GetCellData()->AddArray(radiosity);
+  walls->GetCellData()->AddArray(irradiance);
+  return walls;
+}
+
 /// The filter's material properties over the scene description's.
 void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescription& d)
 {
@@ -291,7 +341,40 @@ void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescript
 
 } // namespace
 
-vtkVolumetricRadiosity::vtkVolumetricRadiosity() = default;
+vtkVolumetricRadiosity::vtkVolumetricRadiosity()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkPolyData* vtkVolumetricRadiosity::GetWallOutput()
+{
+  return vtkPolyData::SafeDownCast(this->GetOutputDataObject(1));
+}
+
+int vtkVolumetricRadiosity::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1) {
+    info->Set(vtkDataObject::DATA_TYPE_NAME(), "vtkPolyData");
+    return 1;
+  }
+  return this->Superclass::FillOutputPortInformation(port, info);
+}
+
+int vtkVolumetricRadiosity::RequestInformation(vtkInformation* request,
+                                               vtkInformationVector** inputVector,
+                                               vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector)) {
+    return 0;
+  }
+  // The image algorithm copies the input's extent to every output: the wall
+  // polydata has none.
+  vtkInformation* walls = outputVector->GetInformationObject(1);
+  walls->Remove(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT());
+  walls->Remove(vtkDataObject::SPACING());
+  walls->Remove(vtkDataObject::ORIGIN());
+  return 1;
+}
 
 vtkVolumetricRadiosity::~vtkVolumetricRadiosity()
 {
@@ -317,6 +400,77 @@ volradTransferFunctionProperty(AlbedoFunction, vtkPiecewiseFunction);
 volradTransferFunctionProperty(ColorFunction, vtkColorTransferFunction);
 volradTransferFunctionProperty(EmissionFunction, vtkColorTransferFunction);
 #undef volradTransferFunctionProperty
+
+void vtkVolumetricRadiosity::AddDirectionalLight(double dx,
+                                                 double dy,
+                                                 double dz,
+                                                 double r,
+                                                 double g,
+                                                 double b)
+{
+  this->Lights.push_back({ 0.0, dx, dy, dz, r, g, b });
+  this->Modified();
+}
+
+void vtkVolumetricRadiosity::AddPointLight(double x,
+                                           double y,
+                                           double z,
+                                           double r,
+                                           double g,
+                                           double b)
+{
+  this->Lights.push_back({ 1.0, x, y, z, r, g, b });
+  this->Modified();
+}
+
+void vtkVolumetricRadiosity::RemoveAllLights()
+{
+  if (!this->Lights.empty()) {
+    this->Lights.clear();
+    this->Modified();
+  }
+}
+
+int vtkVolumetricRadiosity::GetNumberOfLights()
+{
+  return static_cast<int>(this->Lights.size());
+}
+
+void vtkVolumetricRadiosity::AddLightsFromRenderer(vtkRenderer* renderer, double scale)
+{
+  if (!renderer) {
+    return;
+  }
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkLightCollection* lights = renderer->GetLights();
+  vtkCollectionSimpleIterator it;
+  lights->InitTraversal(it);
+  while (vtkLight* light = lights->GetNextLight(it)) {
+    if (!light->GetSwitch()) {
+      continue;
+    }
+    double c[3];
+    light->GetDiffuseColor(c);
+    const double k = scale * light->GetIntensity();
+    double position[3], focal[3];
+    light->GetTransformedPosition(position);
+    light->GetTransformedFocalPoint(focal);
+    if (light->LightTypeIsHeadlight() && camera) {
+      camera->GetPosition(position);
+      camera->GetFocalPoint(focal);
+    }
+    if (light->GetPositional()) {
+      this->AddPointLight(position[0], position[1], position[2], k * c[0], k * c[1], k * c[2]);
+    } else {
+      this->AddDirectionalLight(focal[0] - position[0],
+                                focal[1] - position[1],
+                                focal[2] - position[2],
+                                k * c[0],
+                                k * c[1],
+                                k * c[2]);
+    }
+  }
+}
 
 vtkMTimeType vtkVolumetricRadiosity::GetMTime()
 {
@@ -350,7 +504,8 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkImageData* output = vtkImageData::GetData(outputVector);
-  if (!input || !output) {
+  vtkPolyData* walls = vtkPolyData::GetData(outputVector, 1);
+  if (!input || !output || !walls) {
     vtkErrorMacro("vtkVolumetricRadiosity needs a vtkImageData input");
     return 0;
   }
@@ -362,6 +517,16 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
       description = volrad::readSceneDescription(this->SceneFileName);
     }
     applyMaterialProperties(this, description);
+    for (const auto& l : this->Lights) {
+      const int C = description.channels;
+      const volrad::ChannelValues rgb = C == 1 ? volrad::uniformChannels((l[4] + l[5] + l[6]) / 3.0)
+                                               : volrad::ChannelValues{ l[4], l[5], l[6] };
+      if (l[0] == 0.0) {
+        description.directionalLights.push_back({ volrad::Vec3(l[1], l[2], l[3]), rgb });
+      } else {
+        description.pointLights.push_back({ volrad::Vec3(l[1], l[2], l[3]), rgb });
+      }
+    }
     std::string missing;
     const volrad::Scene scene = makeScene(input, description, missing);
     if (!missing.empty()) {
@@ -380,14 +545,26 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     addPointArray(output, "DiffuseRadiosity", solution.QD, C);
     addPointArray(output, "FrontIncidentRadiation", solution.Gplus, C);
     addPointArray(output, "AbsorbedPower", solution.absorbed, C);
+    double white = 0.0;
+    const std::vector<std::uint8_t> rgba = volrad::renderColors(scene, solution, {}, &white);
+    vtkNew<vtkUnsignedCharArray> colors;
+    colors->SetName("RenderRGBA");
+    colors->SetNumberOfComponents(4);
+    colors->SetNumberOfTuples(input->GetNumberOfPoints());
+    std::copy(rgba.begin(), rgba.end(), colors->GetPointer(0));
+    output->GetPointData()->AddArray(colors);
     addStatistics(output->GetFieldData(), solution);
+    addField(output->GetFieldData(), "RenderWhiteRadiance", { white });
+    walls->ShallowCopy(makeWalls(scene, solution));
   } catch (const volrad::Aborted&) {
     vtkWarningMacro("the solve was aborted");
     output->Initialize();
+    walls->Initialize();
     return 1;
   } catch (const std::exception& e) {
     vtkErrorMacro(<< e.what());
     output->Initialize();
+    walls->Initialize();
     return 0;
   }
   return 1;
@@ -407,4 +584,5 @@ void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ColorFunction: " << this->ColorFunction.Get() << "\n";
   os << indent << "EmissionFunction: " << this->EmissionFunction.Get() << "\n";
   os << indent << "SurfaceGradient: " << this->SurfaceGradient << "\n";
+  os << indent << "Lights: " << this->Lights.size() << "\n";
 }

@@ -6,16 +6,23 @@
  * Takes a vtkImageData whose point data hold the optical coefficients of
  * the medium (docs/scene-format.md: absorption kappa_a, isotropic
  * scattering sigma_i, surface-like scattering sigma_d [1/length];
- * emission E_I, E_D [W/m^2]; normals), solves volumetric radiosity once
- * (lights, environment and walls as the scene says), and outputs the input
- * with these point-data arrays added (float, 1 or 3 components):
- * IncidentRadiation (G), IsotropicRadiosity (Q_I), DiffuseRadiosity (Q_D),
- * FrontIncidentRadiation (G+), AbsorbedPower [W/length^3]; the solve's
- * statistics and energy terms go to field data.
+ * emission E_I, E_D [W/m^2]; normals), or scalars that a material maps to
+ * them (a preset or transfer functions, below), solves volumetric radiosity
+ * once (lights, environment and walls as the scene says; the hierarchical
+ * solver by default) and outputs on port 0 the input with these point-data
+ * arrays added (float, 1 or 3 components): IncidentRadiation (G),
+ * IsotropicRadiosity (Q_I), DiffuseRadiosity (Q_D), FrontIncidentRadiation
+ * (G+), AbsorbedPower [W/length^3], plus RenderRGBA (unsigned char, 4
+ * components: tone-mapped radiance and opacity, for volume mappers with
+ * IndependentComponents off); the solve's statistics and energy terms go to
+ * field data. Port 1 holds the wall patches with their radiosity and
+ * irradiance.
  *
- * The scene (array names, channels, boundary, lights, solver) is given as a
- * scene file or as its JSON text. Radiosity is global, so the filter always
- * requests and produces the whole extent.
+ * The scene (array names, material, channels, boundary, lights, solver) is
+ * given as a scene file or as its JSON text; the material properties below
+ * replace the scene's. Radiosity is global, so the filter always requests
+ * and produces the whole extent. Progress events follow the solve, and
+ * AbortExecute stops it (the output is then empty).
  */
 #ifndef vtkVolumetricRadiosity_h
 #define vtkVolumetricRadiosity_h
@@ -24,7 +31,12 @@
 #include "vtkImageAlgorithm.h"
 #include "vtkSmartPointer.h" // for the transfer functions
 
+#include <array>  // for the lights
+#include <vector> // for the lights
+
 class vtkColorTransferFunction;
+class vtkPolyData;
+class vtkRenderer;
 class vtkPiecewiseFunction;
 
 class VOLRADFILTERS_EXPORT vtkVolumetricRadiosity : public vtkImageAlgorithm
@@ -33,6 +45,13 @@ public:
   static vtkVolumetricRadiosity* New();
   vtkTypeMacro(vtkVolumetricRadiosity, vtkImageAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /**
+   * Port 1: the wall patches, one quad per voxel face on every wall of the
+   * domain, with cell data Radiosity (B) and Irradiance (H) [W/m^2], 1 or
+   * `channels` components; empty when the scene has no walls.
+   */
+  vtkPolyData* GetWallOutput();
 
   ///@{
   /**
@@ -87,6 +106,27 @@ public:
   vtkGetMacro(SurfaceGradient, double);
   ///@}
 
+  ///@{
+  /**
+   * Lights besides the scene file's. A directional light travels along
+   * (dx, dy, dz) with irradiance (r, g, b) [W/m^2] on a plane normal to it;
+   * a point light at (x, y, z) has intensity (r, g, b) [W/sr]. Grey scenes
+   * take the mean of r, g, b.
+   */
+  void AddDirectionalLight(double dx, double dy, double dz, double r, double g, double b);
+  void AddPointLight(double x, double y, double z, double r, double g, double b);
+  void RemoveAllLights();
+  int GetNumberOfLights();
+  /**
+   * Adds the switched-on lights of a renderer, so that the lighting matches
+   * what it renders: positional lights as point lights of intensity
+   * `scale` x Intensity x DiffuseColor, the others (scene, camera and head
+   * lights, placed by the renderer's active camera) as directional lights
+   * from their position towards their focal point with that irradiance.
+   */
+  void AddLightsFromRenderer(vtkRenderer* renderer, double scale = 1.0);
+  ///@}
+
   /** Includes the transfer functions' modification times. */
   vtkMTimeType GetMTime() override;
 
@@ -94,6 +134,8 @@ protected:
   vtkVolumetricRadiosity();
   ~vtkVolumetricRadiosity() override;
 
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -106,6 +148,8 @@ protected:
   vtkSmartPointer<vtkColorTransferFunction> ColorFunction;
   vtkSmartPointer<vtkColorTransferFunction> EmissionFunction;
   double SurfaceGradient = -1.0;
+  /// Per light: 0 directional / 1 point, then direction or position, then r, g, b.
+  std::vector<std::array<double, 7>> Lights;
 
 private:
   vtkVolumetricRadiosity(const vtkVolumetricRadiosity&) = delete;

@@ -168,9 +168,10 @@ TEST(HierarchicalSolver, RefusesOverItsMemoryBudget)
     EXPECT_NE(std::string(e.what()).find("memory budget"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("before any link"), std::string::npos) << e.what();
   }
-  // Enough for the voxels, not for the links the default tolerance needs
-  // (about 1e6 at this size): refused during the refinement.
-  o.memoryLimitBytes = 2e6 + 64.0 * 2e4;
+  // Enough for the voxels and the fewest links (1728 voxels x 100), not for
+  // those the default tolerance needs here (about 1e6): refused during the
+  // refinement.
+  o.memoryLimitBytes = 2e6 + 64.0 * 2e5;
   try {
     solveHierarchical(s, o);
     ADD_FAILURE() << "no error";

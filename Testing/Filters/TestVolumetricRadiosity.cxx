@@ -3,7 +3,10 @@
 // and its errors.
 #include "vtkVolumetricRadiosity.h"
 
+#include "IncidentRadiation.h"
+
 #include "vtkCallbackCommand.h"
+#include "vtkCell.h"
 #include "vtkCellData.h"
 #include "vtkCommand.h"
 #include "vtkDoubleArray.h"
@@ -12,8 +15,11 @@
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkIntArray.h"
+#include "vtkLight.h"
 #include "vtkNew.h"
 #include "vtkPointData.h"
+#include "vtkPolyData.h"
+#include "vtkRenderer.h"
 #include "vtkShortArray.h"
 #include "vtkSmartPointer.h"
 #include "vtkStringArray.h"
@@ -84,12 +90,7 @@ std::vector<float> runFilter(vtkImageData* image, const char* scene, std::string
   if (error) {
     *error = messages;
   }
-  std::vector<float> g;
-  if (auto* a = vtkFloatArray::SafeDownCast(
-        f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))) {
-    g.assign(a->GetPointer(0), a->GetPointer(0) + a->GetNumberOfValues());
-  }
-  return g;
+  return volrad::test::incidentRadiation(f->GetOutput());
 }
 
 } // namespace
@@ -293,4 +294,95 @@ TEST(VolumetricRadiosity, CellDataCoefficientsAreNamedInTheError)
   std::string error;
   EXPECT_TRUE(runFilter(image, kScene, &error).empty());
   EXPECT_NE(error.find("'kappa_a' is a cell-data array"), std::string::npos) << error;
+}
+
+TEST(VolumetricRadiosity, WallPatchesOnTheSecondPortAndRenderColours)
+{
+  auto image = makeImage<vtkFloatArray>(); // 8x7x6, spacing 0.5 0.25 0.4
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(kScene); // a zmin wall of reflectance 0.5
+  f->Update();
+  vtkPolyData* walls = f->GetWallOutput();
+  ASSERT_NE(walls, nullptr);
+  ASSERT_EQ(walls->GetNumberOfCells(), 8 * 7);
+  auto* B = walls->GetCellData()->GetArray("Radiosity");
+  auto* H = walls->GetCellData()->GetArray("Irradiance");
+  ASSERT_NE(B, nullptr);
+  ASSERT_NE(H, nullptr);
+  // Every quad lies on the zmin face (z = 3.0 - 0.2) and is 0.5 x 0.25;
+  // absorbed by the wall: (1 - rho) H A, summed = EnergyAbsorbedWalls.
+  double absorbed = 0.0;
+  for (vtkIdType c = 0; c < walls->GetNumberOfCells(); ++c) {
+    double bounds[6];
+    walls->GetCell(c)->GetBounds(bounds);
+    EXPECT_NEAR(bounds[4], 2.8, 1e-6);
+    EXPECT_NEAR(bounds[5], 2.8, 1e-6);
+    EXPECT_NEAR((bounds[1] - bounds[0]) * (bounds[3] - bounds[2]), 0.125, 1e-6);
+    EXPECT_NEAR(B->GetComponent(c, 0), 0.5 * H->GetComponent(c, 0), 1e-5 * H->GetComponent(c, 0));
+    absorbed += 0.5 * H->GetComponent(c, 0) * 0.125;
+  }
+  const double expected =
+    f->GetOutput()->GetFieldData()->GetArray("EnergyAbsorbedWalls")->GetComponent(0, 0);
+  EXPECT_NEAR(absorbed, expected, 1e-5 * expected);
+  EXPECT_GT(absorbed, 0.0);
+
+  auto* rgba =
+    vtkUnsignedCharArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("RenderRGBA"));
+  ASSERT_NE(rgba, nullptr);
+  EXPECT_EQ(rgba->GetNumberOfComponents(), 4);
+  EXPECT_EQ(rgba->GetNumberOfTuples(), image->GetNumberOfPoints());
+
+  // No walls: an empty second output.
+  f->SetSceneJSON(R"({"version": 1, "solver": {"method": "dense"}})");
+  f->Update();
+  EXPECT_EQ(f->GetWallOutput()->GetNumberOfCells(), 0);
+}
+
+TEST(VolumetricRadiosity, LightPropertiesAndARenderersLights)
+{
+  auto image = makeImage<vtkFloatArray>();
+  const char* dark = R"({"version": 1, "channels": 3, "solver": {"method": "dense"}})";
+  const char* lit = R"({"version": 1, "channels": 3, "solver": {"method": "dense"},
+    "lights": [{"type": "directional", "direction": [0, 0, -10], "irradiance": [2, 1, 0.5]},
+               {"type": "point", "position": [2.5, -1.2, 4.0], "intensity": [0.3, 0.2, 0.1]}]})";
+  const std::vector<float> reference = runFilter(image, lit);
+  ASSERT_FALSE(reference.empty());
+
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(dark);
+  f->AddDirectionalLight(0, 0, -10, 2, 1, 0.5);
+  f->AddPointLight(2.5, -1.2, 4.0, 0.3, 0.2, 0.1);
+  EXPECT_EQ(f->GetNumberOfLights(), 2);
+  f->Update();
+  EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()), reference);
+
+  // The same from a renderer: a scene light shining down, a positional one.
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkLight> sun, lamp;
+  sun->SetLightTypeToSceneLight();
+  sun->SetPosition(1, 2, 13);
+  sun->SetFocalPoint(1, 2, 3);
+  sun->SetIntensity(2.0);
+  sun->SetDiffuseColor(1.0, 0.5, 0.25);
+  lamp->SetLightTypeToSceneLight();
+  lamp->SetPositional(true);
+  lamp->SetPosition(2.5, -1.2, 4.0);
+  lamp->SetIntensity(0.3);
+  lamp->SetDiffuseColor(1.0, 2.0 / 3.0, 1.0 / 3.0);
+  vtkNew<vtkLight> off;
+  off->SwitchOff();
+  renderer->AddLight(sun);
+  renderer->AddLight(lamp);
+  renderer->AddLight(off);
+  f->RemoveAllLights();
+  f->AddLightsFromRenderer(renderer);
+  EXPECT_EQ(f->GetNumberOfLights(), 2);
+  f->Update();
+  const std::vector<float> fromRenderer = volrad::test::incidentRadiation(f->GetOutput());
+  ASSERT_EQ(fromRenderer.size(), reference.size());
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    EXPECT_NEAR(fromRenderer[i], reference[i], 1e-5 * reference[i] + 1e-9) << i;
+  }
 }

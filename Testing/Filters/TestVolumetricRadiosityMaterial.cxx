@@ -4,6 +4,8 @@
 // scene; arrays the input has win; bad materials are errors.
 #include "vtkVolumetricRadiosity.h"
 
+#include "IncidentRadiation.h"
+
 #include "vtkColorTransferFunction.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -55,12 +57,7 @@ vtkSmartPointer<vtkImageData> ctVolume()
 std::vector<float> incident(vtkVolumetricRadiosity* f)
 {
   f->Update();
-  std::vector<float> g;
-  if (auto* a = vtkFloatArray::SafeDownCast(
-        f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"))) {
-    g.assign(a->GetPointer(0), a->GetPointer(0) + a->GetNumberOfValues());
-  }
-  return g;
+  return volrad::test::incidentRadiation(f->GetOutput());
 }
 
 } // namespace
