@@ -76,8 +76,8 @@ struct ChannelOperator
   const Scene& scene;
   const NearField& near;
   const ZonalSystem& sys;
-  Vector denominator; // 1 - c S_self
-  std::unique_ptr<FarField> far;
+  Vector denominator;            // 1 - c S_self
+  const FarField* far = nullptr; // shared by the channels of one geometry
 
   Vector apply(const Vector& x) const
   {
@@ -309,32 +309,61 @@ Solution solveHierarchical(const Scene& scene,
       std::min(nearOptions.quadrature.voxelPointsPerAxis, 2);
   }
 
-  for (int ch = 0; ch < C; ++ch) {
-    const ProgressRange chp = progress.sub(double(ch) / C, double(ch + 1) / C);
+  // Channels with the same extinction everywhere (a grey medium under
+  // coloured light; every material preset) share the geometry: near field,
+  // hierarchy, links and far field. Only their sources and albedos differ.
+  std::vector<std::vector<int>> groups;
+  {
+    bool grey = C > 1;
+    for (Index v = 0; v < nv && grey; ++v) {
+      for (int c = 1; c < C && grey; ++c) {
+        grey = scene.kappaTAt(v, c) == scene.kappaTAt(v, 0);
+      }
+    }
+    for (int c = 0; c < C; ++c) {
+      if (grey && c > 0) {
+        groups[0].push_back(c);
+      } else {
+        groups.push_back({ c });
+      }
+    }
+  }
+
+  /// One channel's equations over a shared geometry; op refers to sys, so a
+  /// Channel is made in place and never moved.
+  struct Channel
+  {
+    Channel(int c, DirectLighting&& d, ZonalSystem&& s, const Scene& scene, const NearField& near)
+      : ch(c)
+      , dl(std::move(d))
+      , sys(std::move(s))
+      , op{ scene, near, sys, Vector::Ones(sys.e.size()), nullptr }
+    {
+    }
+    int ch;
+    DirectLighting dl;
+    ZonalSystem sys;
+    ChannelOperator op;
+    Vector x0;
+    IterationState state;
+  };
+
+  for (std::size_t gi = 0; gi < groups.size(); ++gi) {
+    const std::vector<int>& chans = groups[gi];
+    const int K = int(chans.size());
+    const ProgressRange gp =
+      progress.sub(double(gi) / groups.size(), double(gi + 1) / groups.size());
     arena.execute([&] {
       auto t = Clock::now();
-      const NearField near = computeNearField(scene, ch, nearOptions, chp.sub(0.0, 0.3));
+      const NearField near = computeNearField(scene, chans[0], nearOptions, gp.sub(0.0, 0.3));
       report.nearSeconds += since(t);
       const ExchangeElements& el = near.elements;
       const Index n = el.size();
-      const DirectLighting dl = computeDirectLight(scene, ch, opt.quadrature);
-      const ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
-      ChannelOperator op{ scene, near, sys, Vector::Ones(n), nullptr };
-      for (Index e = 0; e < n; ++e) {
-        if (sys.c[e] > 0.0) {
-          op.denominator[e] = 1.0 - sys.c[e] * near.diagonal(e);
-          if (!(op.denominator[e] > 1e-12)) {
-            throw Error(
-              "the hierarchical solve is singular: an element scatters back all it emits");
-          }
-        }
-      }
-      const Vector x0 = (sys.e + sys.c.cwiseProduct(sys.D)).cwiseQuotient(op.denominator);
-      const VoxelPyramid pyramid(scene, ch);
-      const ClusterTree tree(scene, ch, pyramid);
+      const VoxelPyramid pyramid(scene, chans[0]);
+      const ClusterTree tree(scene, chans[0], pyramid);
       std::vector<double> target(n);
       for (Index e = 0; e < n; ++e) {
-        target[e] = exchangeRowTarget(scene, ch, el, e);
+        target[e] = exchangeRowTarget(scene, chans[0], el, e);
       }
 
       // Empty voxels' views are refined as if they held the mean medium
@@ -354,10 +383,29 @@ Solution solveHierarchical(const Scene& scene,
         }
       }
 
-      IterationState state;
-      state.x = x0;
-      state.dx = x0;
+      // Each channel's equations (Channel holds references into itself: not moved).
+      std::vector<std::unique_ptr<Channel>> channels;
+      for (const int ch : chans) {
+        DirectLighting dl = computeDirectLight(scene, ch, opt.quadrature);
+        ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
+        auto c = std::make_unique<Channel>(ch, std::move(dl), std::move(sys), scene, near);
+        for (Index e = 0; e < n; ++e) {
+          if (c->sys.c[e] > 0.0) {
+            c->op.denominator[e] = 1.0 - c->sys.c[e] * near.diagonal(e);
+            if (!(c->op.denominator[e] > 1e-12)) {
+              throw Error(
+                "the hierarchical solve is singular: an element scatters back all it emits");
+            }
+          }
+        }
+        c->x0 = (c->sys.e + c->sys.c.cwiseProduct(c->sys.D)).cwiseQuotient(c->op.denominator);
+        c->state.x = c->x0;
+        c->state.dx = c->x0;
+        channels.push_back(std::move(c));
+      }
+
       LinkSet links;
+      std::unique_ptr<FarField> far;
       for (int pass = 0; pass < 2; ++pass) {
         t = Clock::now();
         LinkRefinement refinement;
@@ -366,48 +414,58 @@ Solution solveHierarchical(const Scene& scene,
         refinement.tolerance = pass == 0 ? kFirstPassCoarsening * linkTolerance : linkTolerance;
         refinement.viewSigma = viewSigma;
         refinement.maxLinks = std::max<std::size_t>(1, maxLinks);
-        refinement.radiosity = nodeRadiosity(tree, el, state.x, kRadiosityFloor * maxAbs(state.x));
-        refinement.powerScale = std::max(1e-300, reduceSum(n, [&](Index e) {
-                                           return el.isFront(e) ? 0.0 : state.x[e] * target[e];
-                                         }));
-        op.far.reset();
-        links = refineLinks(tree, refinement, chp.sub(0.3 + 0.1 * pass, 0.35 + 0.1 * pass));
-        op.far = std::make_unique<FarField>(scene, tree, links, near);
+        // Links serve every channel: each node's radiosity relative to its
+        // channel's total power, the largest over the channels.
+        refinement.powerScale = 1.0;
+        refinement.radiosity.assign(tree.size(), 0.f);
+        for (const auto& c : channels) {
+          const Vector& x = c->state.x;
+          const double power = std::max(
+            1e-300, reduceSum(n, [&](Index e) { return el.isFront(e) ? 0.0 : x[e] * target[e]; }));
+          const std::vector<float> r = nodeRadiosity(tree, el, x, kRadiosityFloor * maxAbs(x));
+          for (Index k = 0; k < tree.size(); ++k) {
+            refinement.radiosity[k] = std::max(refinement.radiosity[k], float(r[k] / power));
+          }
+        }
+        far.reset();
+        links = refineLinks(tree, refinement, gp.sub(0.3 + 0.1 * pass, 0.35 + 0.1 * pass));
+        far = std::make_unique<FarField>(scene, tree, links, near);
         report.linkSeconds += since(t);
         report.peakBytes =
           std::max(report.peakBytes,
                    near.bytes() + tree.bytes() + pyramid.grid(0).voxelCount() * 3 * sizeof(float) +
-                     links.bytes() + op.far->bytes() + std::size_t(n) * 8 * sizeof(double));
-        if (pass == 1) {
-          // Continue with the finer links: the change they make is added
-          // and becomes the unshot radiosity.
-          state.dx = x0 + op.apply(state.x) - state.x;
-          state.x += state.dx;
-        }
+                     links.bytes() + far->bytes() + std::size_t(n) * (2 + 6 * K) * sizeof(double));
         t = Clock::now();
-        const double eps = pass == 0 ? std::max(opt.epsilon, 1e-2) : opt.epsilon;
-        const ProgressRange ip = chp.sub(pass == 0 ? 0.35 : 0.5, pass == 0 ? 0.4 : 0.95);
-        bool done = false;
-        if (opt.iteration != HierarchicalOptions::Iteration::Krylov) {
-          done = shoot(op,
-                       state,
-                       eps,
-                       opt.maxIterations,
-                       opt.iteration == HierarchicalOptions::Iteration::Automatic,
-                       report,
-                       ip);
-        }
-        if (!done) {
-          krylov(op, x0, state, eps, opt.maxIterations, report);
+        for (int k = 0; k < K; ++k) {
+          Channel& c = *channels[k];
+          c.op.far = far.get();
+          if (pass == 1) {
+            // Continue with the finer links: the change they make is added
+            // and becomes the unshot radiosity.
+            c.state.dx = c.x0 + c.op.apply(c.state.x) - c.state.x;
+            c.state.x += c.state.dx;
+          }
+          const double eps = pass == 0 ? std::max(opt.epsilon, 1e-2) : opt.epsilon;
+          const double a = pass == 0 ? 0.35 : 0.5, b = pass == 0 ? 0.4 : 0.95;
+          const ProgressRange ip = gp.sub(a + (b - a) * k / K, a + (b - a) * (k + 1) / K);
+          bool done = false;
+          if (opt.iteration != HierarchicalOptions::Iteration::Krylov) {
+            done = shoot(c.op,
+                         c.state,
+                         eps,
+                         opt.maxIterations,
+                         opt.iteration == HierarchicalOptions::Iteration::Automatic,
+                         report,
+                         ip);
+          }
+          if (!done) {
+            krylov(c.op, c.x0, c.state, eps, opt.maxIterations, report);
+          }
         }
         report.iterationSeconds += since(t);
       }
-      sol.stats.converged = sol.stats.converged && state.converged;
-      sol.stats.iterations += state.iterations;
       sol.stats.links +=
         links.pairs + static_cast<long long>(near.stencil.size() / 2 + near.extraValue.size() / 2);
-      sol.stats.finalUnshot = std::max(sol.stats.finalUnshot, maxAbs(state.dx));
-      report.shots += state.shots;
       if (report.linksPerLevel.size() < links.pairsPerLevel.size()) {
         report.linksPerLevel.resize(links.pairsPerLevel.size(), 0);
       }
@@ -415,32 +473,42 @@ Solution solveHierarchical(const Scene& scene,
         report.linksPerLevel[l] += links.pairsPerLevel[l];
       }
 
-      // Fields: collided power C = S x + D, and the views of other voxels.
-      Vector collided = sys.D;
-      std::vector<double> farView(nv, 0.0);
-      near.apply(g, state.x.data(), collided.data(), false);
-      op.far->apply(state.x.data(), collided.data(), farView.data());
-      const Vector& x = state.x;
-      storeChannelFields(
-        scene,
-        ch,
-        el,
-        x,
-        collided,
-        [&](Index v) {
-          double s = farView[v] + dl.track[v] / V;
-          for (Index k = near.viewStart[v]; k < near.viewStart[v + 1]; ++k) {
-            s += near.viewValue[k] * x[near.viewColumn[k]];
-          }
-          return s;
-        },
-        [&](Index v) {
-          // No front side: half of the scattered light, the direct light exactly.
-          const std::size_t o = std::size_t(v) * C + ch;
-          return 0.5 * (sol.G[o] - dl.track[v] / V) + dl.trackFront[v] / V;
-        },
-        sol);
-      sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
+      for (const auto& cp : channels) {
+        const Channel& c = *cp;
+        const int ch = c.ch;
+        sol.stats.converged = sol.stats.converged && c.state.converged;
+        sol.stats.iterations += c.state.iterations;
+        sol.stats.finalUnshot = std::max(sol.stats.finalUnshot, maxAbs(c.state.dx));
+        report.shots += c.state.shots;
+
+        // Fields: collided power C = S x + D, and the views of other voxels.
+        Vector collided = c.sys.D;
+        std::vector<double> farView(nv, 0.0);
+        near.apply(g, c.state.x.data(), collided.data(), false);
+        far->apply(c.state.x.data(), collided.data(), farView.data());
+        const Vector& x = c.state.x;
+        const DirectLighting& dl = c.dl;
+        storeChannelFields(
+          scene,
+          ch,
+          el,
+          x,
+          collided,
+          [&](Index v) {
+            double s = farView[v] + dl.track[v] / V;
+            for (Index k = near.viewStart[v]; k < near.viewStart[v + 1]; ++k) {
+              s += near.viewValue[k] * x[near.viewColumn[k]];
+            }
+            return s;
+          },
+          [&](Index v) {
+            // No front side: half of the scattered light, the direct light exactly.
+            const std::size_t o = std::size_t(v) * C + ch;
+            return 0.5 * (sol.G[o] - dl.track[v] / V) + dl.trackFront[v] / V;
+          },
+          sol);
+        sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
+      }
     });
   }
   progress.report(1.0);

@@ -121,6 +121,27 @@ TEST(HierarchicalSolver, MatchesDenseInRgb)
   expectClose("RGB + sun + emission", rgbTestScene(12));
 }
 
+TEST(HierarchicalSolver, MatchesDenseInAGreyMediumUnderColouredLight)
+{
+  // One extinction for all channels, coloured albedo, light, sky and wall:
+  // the channels share the near field, the hierarchy and the links.
+  Scene s = cubeScene(12, 3);
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    const Vec3 x = s.grid.voxelCentre(v);
+    const double kt = lumpy(x, 1.0, 6.0, 0.7);
+    for (int c = 0; c < 3; ++c) {
+      const double albedo = 0.9 - 0.2 * c;
+      s.kappaA[v * 3 + c] = float((1.0 - albedo) * kt);
+      s.sigmaI[v * 3 + c] = float(albedo * kt);
+    }
+  }
+  s.directionalLights.push_back({ Vec3(0.3, 0.2, -1.0), { 1.0, 0.7, 0.4 } });
+  s.boundary[static_cast<int>(Face::ZMax)].radiance = { 0.02, 0.04, 0.08 };
+  s.boundary[static_cast<int>(Face::ZMin)].type = BoundaryCondition::Type::Wall;
+  s.boundary[static_cast<int>(Face::ZMin)].reflectance = { 0.6, 0.5, 0.4 };
+  expectClose("grey medium under coloured light (shared links)", s);
+}
+
 TEST(HierarchicalSolver, MatchesDenseWithAPointLightInsideAScatteringMedium)
 {
   expectClose("point light in a scattering medium", pointLightScene(16));
