@@ -9,7 +9,7 @@ packages=(
   libeigen3-dev libtbb-dev nlohmann-json3-dev
   libopenvdb-dev libboost-iostreams-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  xvfb
+  xvfb xauth
 )
 
 missing=()

@@ -1,0 +1,505 @@
+"""Lights the CT head with volumetric radiosity and renders three pictures.
+
+    PYTHONPATH=build/lib/python3/dist-packages \
+        xvfb-run -a /usr/bin/python3 Examples/Python/ct_head.py [OUTDIR] [--size W H]
+
+Reads Data/headsq/quarter.nhdr (the VTKData "headsq" CT, 64x64x93 voxels of
+3.2x3.2x1.5 mm), lights it with one white directional light through
+vtkVolumetricRadiosity (RGB, the ct material, dense solver) and writes to
+OUTDIR (default: out/):
+
+  ct_head_volume.png  volume rendering: colour = albedo colour x baked G,
+                      opacity = extinction (emission-absorption, unshaded)
+  ct_head_bone.png    bone isosurface coloured by the baked G (no OpenGL lighting)
+  ct_head_slice.png   axial slice of G (log scale) with the skin and bone outlines
+
+--size W H sets the pictures' size (default 400 400, the size of the
+regression test's baselines), --light DX DY DZ the direction the light
+travels, --threads the solver's threads. About 40 s on 2 cores, nearly all of
+it the solve.
+
+Rendering is off-screen, but Debian's VTK 9.1 has only the X11 render
+window (no EGL, no OSMesa), so it needs an X server: run it under
+`xvfb-run -a` (Mesa's llvmpipe renders). ParaView style: VTK classes come
+from vtkmodules.vtkXxx, never `import vtk`; no numpy (Debian's python3 has
+none), every image operation is a VTK filter.
+
+Lighting on a coarse grid, baked back: the solver's cost grows with the
+square of the voxel count (the dense solver handles about 20^3 voxels), so
+the volume is solved on a grid 4 times coarser along each axis (voxels
+averaged, 16x16x23) and G is interpolated back onto the full-resolution
+grid. That is legitimate because radiosity is smooth: multiple scattering
+and the soft shadows of a translucent medium vary over many voxels, while
+the sharp detail of the picture comes from the full-resolution material
+(albedo colour, opacity, isosurface) the baked light is multiplied with.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+import time
+
+# Factories of the OpenGL render window and of the volume mapper's display
+# helper (without them, vtkRenderWindow() is an abstract object).
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction, vtkPlane
+from vtkmodules.vtkCommonTransforms import vtkTransform
+from vtkmodules.vtkFiltersCore import vtkCutter, vtkFlyingEdges3D, vtkProbeFilter
+from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
+from vtkmodules.vtkImagingColor import vtkImageLuminance
+from vtkmodules.vtkImagingCore import (
+    vtkImageAppendComponents,
+    vtkImageCast,
+    vtkImageChangeInformation,
+    vtkImageMapToColors,
+    vtkImageReslice,
+    vtkImageShiftScale,
+    vtkImageShrink3D,
+)
+from vtkmodules.vtkImagingMath import vtkImageMathematics
+from vtkmodules.vtkIOImage import vtkNrrdReader, vtkPNGWriter
+from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
+from vtkmodules.vtkRenderingCore import (
+    vtkActor,
+    vtkColorTransferFunction,
+    vtkImageSlice,
+    vtkImageSliceMapper,
+    vtkPolyDataMapper,
+    vtkRenderer,
+    vtkRenderWindow,
+    vtkVolume,
+    vtkVolumeProperty,
+    vtkWindowToImageFilter,
+)
+from vtkmodules.vtkRenderingVolume import vtkFixedPointVolumeRayCastMapper
+
+from volrad import vtkVolumetricRadiosity
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "..", "Data", "headsq", "quarter.nhdr")
+
+# The file's values are 0-3926, not Hounsfield units: air outside the head
+# peaks at about 105 (0 outside the scanner's field of view), soft tissue at
+# about 1080, bone 1300-2500. They are the usual unsigned CT storage with a
+# rescale intercept of -1024: HU = value - 1024 puts air at about -920 (the
+# ct material treats everything below -500 as empty), brain and muscle at
+# +50, bone at +300 to +1500. So the ct material applies after that shift.
+HU_OFFSET = -1024.0
+
+# The "ct" preset of Module/volrad/Material.cxx (HU, mm), repeated here
+# because the pictures need its curves too (opacity from the extinction,
+# colour from the albedo colour), and passed to the solver explicitly so
+# that the solve and the pictures use the same numbers.
+EXTINCTION = [[-1000, 0.0], [-500, 0.0], [-100, 0.02], [40, 0.05], [200, 0.2], [700, 2.0],
+              [3000, 2.0]]                                            # 1/mm
+ALBEDO = [[-500, 0.98], [40, 0.95], [300, 0.8], [1000, 0.7]]
+COLOR = [[-100, 1.0, 0.9, 0.7], [40, 1.0, 0.65, 0.55], [300, 1.0, 0.9, 0.85]]  # [HU, r, g, b]
+SURFACE_GRADIENT = 100.0                                              # HU/mm
+
+SHRINK = 4                 # solve on a 16x16x23 grid
+# Direction the light travels, in the volume's axes. In headsq the face
+# looks towards +y, the top of the head is at z = 0 (-z is up; the scan stops
+# at mid-forehead, so the top and bottom of the volume are cut faces) and x
+# runs across the head. The light comes from the front (+y), from the -x side
+# and a little from above: the -x side of the face is lit, the +x side and the
+# back of the head are in shadow.
+LIGHT_DIRECTION = [0.85, -0.45, 0.25]
+IRRADIANCE = 1.0           # W/m^2 on a plane normal to the light
+G_WHITE = 1.0              # G shown at full brightness (display exposure)
+BONE_HU = 400.0            # isosurface level of bone
+SKIN_HU = -400.0           # outline of the skin on the slice
+SLICE_RANGE = (1e-3, 1.5)  # G on the slice, log scale
+SLICE_K = 30               # axial slice: nose, maxillary sinuses, skull base
+
+
+def interpolate(points, s, index=1):
+    """The piecewise-linear function of `points` (column `index`) at s, constant past the ends."""
+    if s <= points[0][0]:
+        return points[0][index]
+    for a, b in zip(points, points[1:]):
+        if s <= b[0]:
+            w = (s - a[0]) / (b[0] - a[0])
+            return a[index] + w * (b[index] - a[index])
+    return points[-1][index]
+
+
+def parse_args():
+    parser = argparse.ArgumentParser(description="Light the CT head and render three PNGs.")
+    parser.add_argument("outdir", nargs="?", default="out", help="folder for the PNGs (default out/)")
+    parser.add_argument("--size", nargs=2, type=int, default=[400, 400], metavar=("W", "H"),
+                        help="image size in pixels (default 400 400)")
+    parser.add_argument("--light", nargs=3, type=float, default=LIGHT_DIRECTION,
+                        metavar=("DX", "DY", "DZ"), help="direction the light travels")
+    parser.add_argument("--threads", type=int, default=0, help="solver threads (0: all cores)")
+    return parser.parse_args()
+
+
+def read_head():
+    """The CT in HU (float), origin 0, spacing 3.2 x 3.2 x 1.5 mm."""
+    reader = vtkNrrdReader()
+    reader.SetFileName(DATA)
+    to_hu = vtkImageShiftScale()
+    to_hu.SetInputConnection(reader.GetOutputPort())
+    to_hu.SetShift(HU_OFFSET)
+    to_hu.SetScale(1.0)
+    to_hu.SetOutputScalarTypeToFloat()
+    to_hu.Update()
+    hu = to_hu.GetOutput()
+    hu.GetPointData().GetScalars().SetName("HU")
+    return hu
+
+
+def solve(hu, light, threads):
+    """Lights the coarse grid; returns G (3 components) baked onto the full grid."""
+    # Average 4x4x4 voxels. vtkImageShrink3D keeps the origin, but the mean of
+    # fine voxels 4i..4i+3 belongs at their centre, 1.5 fine voxels further.
+    shrink = vtkImageShrink3D()
+    shrink.SetInputData(hu)
+    shrink.SetShrinkFactors(SHRINK, SHRINK, SHRINK)
+    shrink.AveragingOn()
+    centre = vtkImageChangeInformation()
+    centre.SetInputConnection(shrink.GetOutputPort())
+    centre.SetOriginTranslation([(SHRINK - 1) / 2.0 * s for s in hu.GetSpacing()])
+
+    scene = {
+        "version": 1,
+        "channels": 3,
+        "material": {
+            "preset": "ct",
+            "extinction": EXTINCTION,
+            "albedo": ALBEDO,
+            "color": COLOR,
+            "surface_gradient": SURFACE_GRADIENT,
+        },
+        "lights": [{"type": "directional", "direction": light, "irradiance": IRRADIANCE}],
+        "solver": {"method": "dense"},
+    }
+    radiosity = vtkVolumetricRadiosity()
+    radiosity.SetInputConnection(centre.GetOutputPort())
+    radiosity.SetSceneJSON(json.dumps(scene))
+    radiosity.SetNumberOfThreads(threads)
+    radiosity.Update()
+    lit = radiosity.GetOutput()
+    if lit.GetPointData().GetArray("IncidentRadiation") is None:
+        sys.exit("ct_head: the solve failed (see the VTK error above)")
+    fd = lit.GetFieldData()
+    residual = fd.GetArray("EnergyBalanceResidual").GetComponent(0, 0)
+    print(f"solved {lit.GetDimensions()} voxels: {fd.GetAbstractArray('SolverMethod').GetValue(0)}, "
+          f"{fd.GetArray('SolveSeconds').GetValue(0):.1f} s, energy balance residual {residual:.2g}")
+
+    # Bake: interpolate G (trilinear) onto the full-resolution grid. Mirror
+    # padding covers the half coarse voxel at the borders the coarse points
+    # do not reach.
+    coarse = vtkImageData()
+    coarse.CopyStructure(lit)
+    coarse.GetPointData().SetScalars(lit.GetPointData().GetArray("IncidentRadiation"))
+    bake = vtkImageReslice()
+    bake.SetInputData(coarse)
+    bake.SetInformationInput(hu)
+    bake.SetInterpolationModeToLinear()
+    bake.MirrorOn()
+    bake.Update()
+    G = bake.GetOutput()
+    G.GetPointData().GetScalars().SetName("IncidentRadiation")
+    return G
+
+
+def luminance(G):
+    """One component of G for colour maps: 0.30 R + 0.59 G + 0.11 B (vtkImageLuminance)."""
+    lum = vtkImageLuminance()
+    lum.SetInputData(G)
+    lum.Update()
+    out = lum.GetOutput()
+    out.GetPointData().GetScalars().SetName("G")
+    return out
+
+
+def render_ready_rgba(hu, G):
+    """RGBA unsigned char: RGB = 255 albedo colour x G / G_WHITE, A = (HU + 1024) / 16."""
+    # Albedo colour a_c(s) = albedo(s) colour_c(s), sampled every 10 HU.
+    albedo_color = vtkColorTransferFunction()
+    for s in range(-1100, 1201, 10):
+        a = interpolate(ALBEDO, s)
+        albedo_color.AddRGBPoint(s, *(a * interpolate(COLOR, s, c) for c in (1, 2, 3)))
+    albedo_rgb = vtkImageMapToColors()
+    albedo_rgb.SetInputData(hu)
+    albedo_rgb.SetLookupTable(albedo_color)
+    albedo_rgb.SetOutputFormatToRGB()
+    albedo_float = vtkImageCast()
+    albedo_float.SetInputConnection(albedo_rgb.GetOutputPort())
+    albedo_float.SetOutputScalarTypeToFloat()
+
+    # Display exposure: G_WHITE shows at full brightness, linearly (no tone
+    # curve), so that the shadowed side reads as shadow.
+    exposure = vtkImageMathematics()
+    exposure.SetInputData(G)
+    exposure.SetOperationToMultiplyByK()
+    exposure.SetConstantK(1.0 / G_WHITE)
+
+    product = vtkImageMathematics()   # component by component
+    product.SetOperationToMultiply()
+    product.SetInputConnection(0, albedo_float.GetOutputPort())
+    product.SetInputConnection(1, exposure.GetOutputPort())
+    rgb = vtkImageShiftScale()        # albedo_rgb is 0-255 already
+    rgb.SetInputConnection(product.GetOutputPort())
+    rgb.SetOutputScalarTypeToUnsignedChar()
+    rgb.ClampOverflowOn()
+
+    # Alpha: HU in 16-HU steps (-1024 -> 0, 3056 -> 255), looked up by the
+    # scalar opacity function below.
+    alpha = vtkImageShiftScale()
+    alpha.SetInputData(hu)
+    alpha.SetShift(-HU_OFFSET)
+    alpha.SetScale(1.0 / 16.0)
+    alpha.SetOutputScalarTypeToUnsignedChar()
+    alpha.ClampOverflowOn()
+
+    rgba = vtkImageAppendComponents()
+    rgba.AddInputConnection(rgb.GetOutputPort())
+    rgba.AddInputConnection(alpha.GetOutputPort())
+    rgba.Update()
+    return rgba.GetOutput()
+
+
+def head_camera(renderer, azimuth=-20.0, elevation=-10.0, zoom=1.3):
+    """A view of the face (which looks towards +y; -z is up), turned by azimuth
+    and elevation (degrees)."""
+    renderer.ResetCamera()
+    camera = renderer.GetActiveCamera()
+    fp = camera.GetFocalPoint()
+    d = camera.GetDistance()
+    camera.SetPosition(fp[0], fp[1] + d, fp[2])
+    camera.SetViewUp(0, 0, -1)
+    camera.Azimuth(azimuth)
+    camera.Elevation(elevation)
+    camera.OrthogonalizeViewUp()
+    renderer.ResetCamera()
+    camera.Zoom(zoom)
+
+
+def write_png(renderers, size, path):
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(*size)
+    window.SetMultiSamples(0)  # the same pixels on every run
+    for renderer in renderers:
+        window.AddRenderer(renderer)
+    window.Render()
+    grab = vtkWindowToImageFilter()
+    grab.SetInput(window)
+    grab.ReadFrontBufferOff()
+    writer = vtkPNGWriter()
+    writer.SetInputConnection(grab.GetOutputPort())
+    writer.SetFileName(path)
+    writer.Write()
+    window.Finalize()
+    print(f"wrote {path}")
+
+
+def colour_ramp(points, table_range, log=False):
+    """A 256-entry lookup table interpolating (x in [0, 1], r, g, b) points."""
+    ramp = vtkColorTransferFunction()
+    for x, r, g, b in points:
+        ramp.AddRGBPoint(x, r, g, b)
+    lut = vtkLookupTable()
+    lut.SetNumberOfTableValues(256)
+    for i in range(256):
+        lut.SetTableValue(i, *ramp.GetColor(i / 255.0), 1.0)
+    if log:
+        lut.SetScaleToLog10()
+    lut.SetTableRange(*table_range)
+    lut.Build()
+    return lut
+
+
+def with_scalar_bar(scene, lut, title, background, labels=None):
+    """The scene on the left 80% of the window, a scalar bar on the right."""
+    scene.SetViewport(0.0, 0.0, 0.8, 1.0)
+    bar = vtkScalarBarActor()
+    bar.SetLookupTable(lut)
+    bar.SetTitle(title)
+    bar.SetNumberOfLabels(5)
+    bar.SetLabelFormat("%.3g")
+    bar.SetPosition(0.05, 0.08)
+    bar.SetWidth(0.9)
+    bar.SetHeight(0.84)
+    bar.SetBarRatio(0.3)
+    if labels is not None:
+        bar.SetUseCustomLabels(True)
+        bar.SetCustomLabels(labels)
+    bar.UnconstrainedFontSizeOn()
+    bar.GetTitleTextProperty().SetFontSize(13)
+    bar.GetLabelTextProperty().SetFontSize(12)
+    side = vtkRenderer()
+    side.SetViewport(0.8, 0.0, 1.0, 1.0)
+    side.SetBackground(*background)
+    side.AddActor2D(bar)
+    return [scene, side]
+
+
+def volume_picture(hu, G, size, path):
+    """(a) Emission-absorption volume rendering of the baked light: colour =
+    albedo colour x G, opacity from the material's extinction."""
+    rgba = render_ready_rgba(hu, G)
+    # Opacity per mm = 1 - exp(-kappa_t 1 mm), kappa_t the material's
+    # extinction: with colour proportional to albedo x G this is the
+    # transport the solver modelled (what scatters towards the eye per unit
+    # length is sigma_s G / 4 pi = kappa_t a G / 4 pi, attenuated by kappa_t),
+    # for the isotropic part of the scattering. Soft tissue is translucent
+    # (mean free path 20 mm), so the skull shows through the face.
+    opacity = vtkPiecewiseFunction()
+    for a in range(0, 256, 2):
+        s = 16.0 * a + HU_OFFSET
+        opacity.AddPoint(a, 1.0 - math.exp(-interpolate(EXTINCTION, s) * 1.0))
+    prop = vtkVolumeProperty()
+    prop.IndependentComponentsOff()   # RGB used as is, A through the opacity
+    prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(1.0)
+    prop.SetInterpolationTypeToLinear()
+    prop.ShadeOff()                   # the light is in the colours already
+    # CPU ray caster: the same pixels with any OpenGL (the regression test
+    # relies on that), and it takes dependent unsigned char RGBA as is.
+    # vtkGPUVolumeRayCastMapper also works here (llvmpipe, OpenGL 4.5).
+    mapper = vtkFixedPointVolumeRayCastMapper()
+    mapper.SetInputData(rgba)
+    mapper.SetSampleDistance(0.5)
+    mapper.SetImageSampleDistance(1.0)
+    mapper.AutoAdjustSampleDistancesOff()
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer = vtkRenderer()
+    renderer.SetBackground(0.0, 0.0, 0.0)
+    renderer.AddVolume(volume)
+    head_camera(renderer)
+    write_png([renderer], size, path)
+
+
+def bone_picture(hu, G_lum, size, path):
+    """(b) The bone isosurface, its colour the baked G at each point (the
+    actor is unlit: ambient 1, diffuse 0, so the colour is the radiosity)."""
+    bone = vtkFlyingEdges3D()
+    bone.SetInputData(hu)
+    bone.SetValue(0, BONE_HU)
+    bone.ComputeNormalsOff()
+    probe = vtkProbeFilter()
+    probe.SetInputConnection(bone.GetOutputPort())
+    probe.SetSourceData(G_lum)
+    probe.Update()
+    lo, hi = probe.GetOutput().GetPointData().GetArray("G").GetRange()
+    print(f"bone surface at {BONE_HU:g} HU: {probe.GetOutput().GetNumberOfPoints()} points, "
+          f"G {lo:.3f} .. {hi:.3f} W/m^2")
+    # "bone" colours: black, blue-grey, white.
+    lut = colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.375, 0.32, 0.32, 0.44),
+                       (0.75, 0.65, 0.78, 0.78), (1.0, 1.0, 1.0, 1.0)), (0.0, G_WHITE))
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(probe.GetOutputPort())
+    mapper.SetScalarModeToUsePointFieldData()
+    mapper.SelectColorArray("G")
+    mapper.SetLookupTable(lut)
+    mapper.UseLookupTableScalarRangeOn()
+    mapper.ScalarVisibilityOn()
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    actor.GetProperty().SetAmbient(1.0)
+    actor.GetProperty().SetDiffuse(0.0)
+    actor.GetProperty().SetSpecular(0.0)
+    background = (0.1, 0.1, 0.12)
+    renderer = vtkRenderer()
+    renderer.SetBackground(*background)
+    renderer.AddActor(actor)
+    head_camera(renderer)
+    write_png(with_scalar_bar(renderer, lut, "G (W/m2)", background), size, path)
+
+
+def slice_picture(hu, G_lum, size, path):
+    """(c) An axial slice of G through the nose and the skull base (log
+    colour scale), with the skin and bone outlines, seen from below (the
+    radiological convention: the face at the top, the head's -x side, where
+    the light comes from, on the left)."""
+    k = SLICE_K
+    z = hu.GetOrigin()[2] + k * hu.GetSpacing()[2]
+    # inferno-like: black, purple, orange, pale yellow.
+    lut = colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.25, 0.26, 0.04, 0.41), (0.5, 0.73, 0.21, 0.33),
+                       (0.75, 0.98, 0.55, 0.04), (1.0, 0.99, 1.0, 0.64)),
+                      SLICE_RANGE, log=True)
+    mapper = vtkImageSliceMapper()
+    mapper.SetInputData(G_lum)
+    mapper.SetOrientationToZ()
+    mapper.SetSliceNumber(k)
+    image = vtkImageSlice()
+    image.SetMapper(mapper)
+    image.GetProperty().SetLookupTable(lut)
+    image.GetProperty().UseLookupTableScalarRangeOn()
+    image.GetProperty().SetInterpolationTypeToLinear()
+
+    background = (0.1, 0.1, 0.12)
+    renderer = vtkRenderer()
+    renderer.SetBackground(*background)
+    renderer.AddViewProp(image)
+    # Outlines: the skin and bone isosurfaces cut by the slice plane, moved
+    # 1 mm towards the camera (at +z) so that they are drawn over the image.
+    plane = vtkPlane()
+    plane.SetOrigin(0.0, 0.0, z)
+    plane.SetNormal(0.0, 0.0, 1.0)
+    toward_camera = vtkTransform()
+    toward_camera.Translate(0.0, 0.0, 1.0)
+    for level, color in ((SKIN_HU, (0.55, 0.8, 1.0)), (BONE_HU, (1.0, 1.0, 1.0))):
+        surface = vtkFlyingEdges3D()
+        surface.SetInputData(hu)
+        surface.SetValue(0, level)
+        surface.ComputeNormalsOff()
+        cut = vtkCutter()
+        cut.SetInputConnection(surface.GetOutputPort())
+        cut.SetCutFunction(plane)
+        move = vtkTransformPolyDataFilter()
+        move.SetInputConnection(cut.GetOutputPort())
+        move.SetTransform(toward_camera)
+        line_mapper = vtkPolyDataMapper()
+        line_mapper.SetInputConnection(move.GetOutputPort())
+        line_mapper.ScalarVisibilityOff()
+        lines = vtkActor()
+        lines.SetMapper(line_mapper)
+        lines.GetProperty().SetColor(*color)
+        lines.GetProperty().SetLineWidth(1.0)
+        lines.GetProperty().LightingOff()
+        renderer.AddActor(lines)
+    renderer.ResetCamera()
+    camera = renderer.GetActiveCamera()
+    fp = camera.GetFocalPoint()
+    camera.SetPosition(fp[0], fp[1], fp[2] + camera.GetDistance())
+    camera.SetViewUp(0, 1, 0)
+    camera.ParallelProjectionOn()
+    renderer.ResetCamera()
+    # The whole slice in the scene's viewport (80% of the width).
+    bounds = hu.GetBounds()
+    aspect = 0.8 * size[0] / size[1]
+    camera.SetParallelScale(0.51 * max(bounds[3] - bounds[2], (bounds[1] - bounds[0]) / aspect))
+    labels = vtkDoubleArray()
+    for v in (0.001, 0.01, 0.1, 1.0):
+        labels.InsertNextValue(v)
+    write_png(with_scalar_bar(renderer, lut, "G (W/m2)", background, labels), size, path)
+
+
+def main():
+    args = parse_args()
+    os.makedirs(args.outdir, exist_ok=True)
+    start = time.time()
+    hu = read_head()
+    print(f"read {DATA}: {hu.GetDimensions()} voxels, spacing {hu.GetSpacing()} mm, "
+          f"HU {hu.GetScalarRange()[0]:.0f} .. {hu.GetScalarRange()[1]:.0f}")
+    G = solve(hu, args.light, args.threads)
+    G_lum = luminance(G)
+    print(f"baked G onto {G.GetDimensions()}: {G_lum.GetScalarRange()[0]:.3f} .. "
+          f"{G_lum.GetScalarRange()[1]:.3f} W/m^2 ({time.time() - start:.1f} s)")
+    volume_picture(hu, G, args.size, os.path.join(args.outdir, "ct_head_volume.png"))
+    bone_picture(hu, G_lum, args.size, os.path.join(args.outdir, "ct_head_bone.png"))
+    slice_picture(hu, G_lum, args.size, os.path.join(args.outdir, "ct_head_slice.png"))
+    print(f"done in {time.time() - start:.1f} s")
+
+
+if __name__ == "__main__":
+    main()
