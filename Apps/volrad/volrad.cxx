@@ -11,6 +11,7 @@
 #include "vtkDICOMImageReader.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkImageChangeInformation.h"
 #include "vtkImageData.h"
 #include "vtkImageShrink3D.h"
 #include "vtkMetaImageReader.h"
@@ -234,12 +235,21 @@ int main(int argc, char* argv[])
                 (errors.messages.empty() ? "" : ": " + errors.messages));
   }
   vtkNew<vtkImageShrink3D> shrinker;
+  vtkNew<vtkImageChangeInformation> centred;
   vtkAlgorithm* source = reader;
   if (shrink > 1) {
     shrinker->SetShrinkFactors(shrink, shrink, shrink);
     shrinker->AveragingOn();
     shrinker->SetInputConnection(reader->GetOutputPort());
-    source = shrinker;
+    // The shrinker keeps the origin, but the mean of fine voxels Ni..Ni+N-1
+    // belongs at their centre, (N-1)/2 fine voxels further.
+    double spacing[3];
+    image->GetSpacing(spacing);
+    centred->SetInputConnection(shrinker->GetOutputPort());
+    centred->SetOriginTranslation((shrink - 1) / 2.0 * spacing[0],
+                                  (shrink - 1) / 2.0 * spacing[1],
+                                  (shrink - 1) / 2.0 * spacing[2]);
+    source = centred;
   }
 
   vtkNew<vtkVolumetricRadiosity> filter;

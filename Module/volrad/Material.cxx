@@ -187,6 +187,28 @@ void validateMaterial(const MaterialMap& m, const std::string& where)
     checkFunction(m.color[c], where + ".color", 0.0, 1.0);
     checkFunction(m.emission[c], where + ".emission", 0.0, inf);
   }
+  if (!m.labels.empty() && !m.extinction.empty()) {
+    throw Error(where + ": give either a label table or transfer functions, not both");
+  }
+  for (const auto& [label, lm] : m.labels) {
+    const std::string at = where + ".labels." + std::to_string(label);
+    auto check = [&](double v, const char* what, double hi) {
+      if (!std::isfinite(v) || v < 0.0 || v > hi) {
+        throw Error(at + "." + what + " must be finite, >= 0" + (hi < 2.0 ? " and <= 1" : ""));
+      }
+    };
+    const double inf = std::numeric_limits<double>::infinity();
+    check(lm.extinction, "extinction", inf);
+    check(lm.albedo, "albedo", 1.0);
+    for (int c = 0; c < kMaxChannels; ++c) {
+      check(lm.color[c], "color", 1.0);
+      check(lm.emission[c], "emission", inf);
+    }
+  }
+  if (!std::isfinite(m.rescaleSlope) || m.rescaleSlope == 0.0 ||
+      !std::isfinite(m.rescaleIntercept)) {
+    throw Error(where + ".rescale_slope must be finite and non-zero, rescale_intercept finite");
+  }
   if (!(m.surfaceGradient >= 0.0) || !std::isfinite(m.surfaceGradient)) {
     throw Error(where + ".surface_gradient must be a finite number >= 0");
   }
@@ -201,8 +223,8 @@ void applyMaterial(const MaterialMap& m, const std::vector<double>& scalars, Sce
     throw Error("material: the scalar field has " + std::to_string(scalars.size()) +
                 " values, expected " + std::to_string(nv));
   }
-  // Scalars as the functions see them.
-  double lo = 0.0, scale = 1.0;
+  // Scalars as the functions see them: rescaled, then relative to the range.
+  double lo = -m.rescaleIntercept / m.rescaleSlope, scale = m.rescaleSlope;
   if (m.relative) {
     const auto [mn, mx] = std::minmax_element(scalars.begin(), scalars.end());
     lo = *mn;
@@ -219,12 +241,34 @@ void applyMaterial(const MaterialMap& m, const std::vector<double>& scalars, Sce
     gradient = scalarGradient(g, scalars);
   }
   const int C = scene.channels;
+  if (!m.labels.empty()) {
+    for (Index v = 0; v < nv; ++v) {
+      const auto it = m.labels.find(std::llround(scalars[v] * m.rescaleSlope + m.rescaleIntercept));
+      const LabelMaterial none;
+      const LabelMaterial& lm = it == m.labels.end() ? none : it->second;
+      const double kt = lm.extinction * lengthScale;
+      for (int c = 0; c < C; ++c) {
+        const double colour =
+          C == kMaxChannels ? lm.color[c] : (lm.color[0] + lm.color[1] + lm.color[2]) / 3.0;
+        const double emission = C == kMaxChannels
+                                  ? lm.emission[c]
+                                  : (lm.emission[0] + lm.emission[1] + lm.emission[2]) / 3.0;
+        const double a = lm.albedo * colour;
+        const std::size_t o = std::size_t(v) * C + c;
+        scene.kappaA[o] = float((1.0 - a) * kt);
+        scene.sigmaI[o] = float(a * kt);
+        scene.sigmaD[o] = 0.f;
+        scene.emissionI[o] = float(emission);
+      }
+    }
+    return;
+  }
   for (Index v = 0; v < nv; ++v) {
     const double s = (scalars[v] - lo) * scale;
     const double kt = m.extinction(s) * lengthScale;
     double share = 0.0;
     if (!gradient.empty() && scene.hasNormal(v)) {
-      share = -std::expm1(-gradient[v].norm() * scale / m.surfaceGradient);
+      share = -std::expm1(-gradient[v].norm() * std::abs(scale) / m.surfaceGradient);
     }
     const double albedo = m.albedo.empty() ? 0.0 : m.albedo(s);
     for (int c = 0; c < C; ++c) {

@@ -20,6 +20,7 @@
 #include "volrad/Scene.h"
 
 #include <array>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,8 +37,22 @@ struct TransferFunction
   double operator()(double x) const;
 };
 
+/// The material of one label of a segmentation.
+struct LabelMaterial
+{
+  double extinction = 0.0;                                    ///< kappa_t [1/length] (or per voxel)
+  double albedo = 0.0;                                        ///< in [0, 1]
+  std::array<double, kMaxChannels> color{ 1.0, 1.0, 1.0 };    ///< albedo factor per channel
+  std::array<double, kMaxChannels> emission{ 0.0, 0.0, 0.0 }; ///< E_I [W/m^2]
+};
+
 struct MaterialMap
 {
+  /// A segmentation's label table (instead of the functions): the scalar,
+  /// rounded to the nearest integer, picks its label's material; labels not
+  /// listed are empty. Label materials scatter isotropically (a label's
+  /// number says nothing of a gradient).
+  std::map<long long, LabelMaterial> labels;
   TransferFunction extinction; ///< kappa_t [1/length] (or per voxel, see perVoxel)
   TransferFunction albedo;     ///< in [0, 1]; empty: 0 (absorbing only)
   /// Per channel (red, green, blue) factor of the albedo in [0, 1]; empty: 1.
@@ -47,6 +62,10 @@ struct MaterialMap
   /// Gradient magnitude [scalar units / length] at which 63% of the
   /// scattering is surface-like; 0: all isotropic.
   double surfaceGradient = 0.0;
+  /// Stored values to the functions' units first: s = slope * value +
+  /// intercept (DICOM's RescaleSlope and RescaleIntercept; e.g. intercept
+  /// -1024 for CT stored without its offset).
+  double rescaleSlope = 1.0, rescaleIntercept = 0.0;
   /// The functions' x are fractions of the volume's scalar range (MR, densities
   /// without absolute units) rather than scalar values.
   bool relative = false;
@@ -54,8 +73,8 @@ struct MaterialMap
   /// spacing), so that a preset looks alike at every resolution.
   bool perVoxel = false;
 
-  /// Whether it gives coefficients at all (an extinction function).
-  bool active() const { return !extinction.empty(); }
+  /// Whether it gives coefficients at all (an extinction function or labels).
+  bool active() const { return !extinction.empty() || !labels.empty(); }
 };
 
 /// The named presets: "ct" and "ct-bone" (Hounsfield units, spacing in mm),

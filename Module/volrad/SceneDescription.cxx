@@ -231,8 +231,11 @@ void parseMaterial(const json& j, MaterialSettings& m)
               "color",
               "emission",
               "surface_gradient",
+              "rescale_slope",
+              "rescale_intercept",
               "relative",
-              "per_voxel" });
+              "per_voxel",
+              "labels" });
   if (j.contains("scalars")) {
     m.scalars = text(j["scalars"], "material.scalars");
   }
@@ -260,6 +263,51 @@ void parseMaterial(const json& j, MaterialSettings& m)
   }
   if (j.contains("surface_gradient")) {
     m.map.surfaceGradient = number(j["surface_gradient"], "material.surface_gradient");
+  }
+  if (j.contains("rescale_slope")) {
+    m.map.rescaleSlope = number(j["rescale_slope"], "material.rescale_slope");
+  }
+  if (j.contains("rescale_intercept")) {
+    m.map.rescaleIntercept = number(j["rescale_intercept"], "material.rescale_intercept");
+  }
+  if (j.contains("labels")) {
+    const json& t = j["labels"];
+    if (!t.is_object() || t.empty()) {
+      fail("material.labels", "must be an object of label materials, keyed by label number");
+    }
+    for (auto it = t.begin(); it != t.end(); ++it) {
+      const std::string key = "material.labels." + it.key();
+      std::size_t used = 0;
+      long long label = 0;
+      try {
+        label = std::stoll(it.key(), &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != it.key().size()) {
+        fail("material.labels key '" + it.key() + "'", "must be a whole number (a label)");
+      }
+      allowOnly(it.value(), key, { "extinction", "albedo", "color", "emission" });
+      if (!it.value().contains("extinction")) {
+        fail(key, "needs an 'extinction'");
+      }
+      LabelMaterial lm;
+      lm.extinction = number(it.value()["extinction"], key + ".extinction");
+      if (it.value().contains("albedo")) {
+        lm.albedo = number(it.value()["albedo"], key + ".albedo");
+      }
+      if (it.value().contains("color")) {
+        lm.color = channelValues(it.value()["color"], key + ".color", kMaxChannels);
+      }
+      if (it.value().contains("emission")) {
+        lm.emission = channelValues(it.value()["emission"], key + ".emission", kMaxChannels);
+      }
+      m.map.labels[label] = lm;
+    }
+    // A label table replaces a preset's functions.
+    if (!j.contains("extinction")) {
+      m.map.extinction.points.clear();
+    }
   }
   for (const char* flag : { "relative", "per_voxel" }) {
     if (j.contains(flag)) {

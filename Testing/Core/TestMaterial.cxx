@@ -106,6 +106,83 @@ TEST(Material, RelativeAndPerVoxelFunctions)
   }
 }
 
+TEST(Material, RescaleMapsStoredValuesFirst)
+{
+  // CT stored without its offset: value = HU + 1024.
+  Scene a = grid(6, 3, 1.0), b = grid(6, 3, 1.0);
+  const std::vector<double> hu = ctHead(a.grid);
+  std::vector<double> stored(hu.size());
+  for (std::size_t i = 0; i < hu.size(); ++i) {
+    stored[i] = hu[i] + 1024.0;
+  }
+  a.normals = b.normals = gradientNormals(a.grid, hu);
+  applyMaterial(materialPreset("ct"), hu, a);
+  MaterialMap m = materialPreset("ct");
+  m.rescaleIntercept = -1024.0;
+  applyMaterial(m, stored, b);
+  EXPECT_EQ(a.kappaA, b.kappaA);
+  EXPECT_EQ(a.sigmaI, b.sigmaI);
+  EXPECT_EQ(a.sigmaD, b.sigmaD);
+  m.rescaleSlope = 0.0;
+  EXPECT_THROW(validateMaterial(m), Error);
+  const SceneDescription d = parseSceneDescription(
+    R"({"version": 1, "material": {"preset": "ct", "rescale_slope": 2, "rescale_intercept": -1024}})");
+  EXPECT_EQ(d.material.map.rescaleSlope, 2.0);
+  EXPECT_EQ(d.material.map.rescaleIntercept, -1024.0);
+}
+
+TEST(Material, LabelTablesGiveEachLabelItsMaterial)
+{
+  // A segmentation: labels 0 (background), 3 and 7, and 9 (not listed).
+  const SceneDescription d = parseSceneDescription(R"({"version": 1, "channels": 3,
+    "material": {"labels": {
+      "3": {"extinction": 0.5, "albedo": 0.8, "color": [1, 0.5, 0.25]},
+      "7": {"extinction": 2, "albedo": 0.5, "emission": [0, 0, 4]}}}})");
+  ASSERT_TRUE(d.material.map.active());
+  Scene s = grid(4, 3, 0.5);
+  std::vector<double> labels(s.grid.voxelCount());
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    const int pick[4] = { 0, 3, 7, 9 };
+    labels[v] = pick[v % 4] + (v % 3 == 0 ? 0.2 : -0.2); // rounded to the label
+  }
+  applyMaterial(d.material.map, labels, s);
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    const int label = int(std::lround(labels[v]));
+    for (int c = 0; c < 3; ++c) {
+      const double kt = label == 3 ? 0.5 : (label == 7 ? 2.0 : 0.0);
+      const double a = label == 3 ? 0.8 * (c == 0 ? 1.0 : (c == 1 ? 0.5 : 0.25)) : 0.5;
+      EXPECT_NEAR(s.kappaTAt(v, c), kt, 1e-6);
+      EXPECT_NEAR(s.sigmaIAt(v, c), a * kt, 1e-6);
+      EXPECT_EQ(s.sigmaDAt(v, c), 0.0);
+      EXPECT_NEAR(s.emissionIAt(v, c), label == 7 && c == 2 ? 4.0 : 0.0, 1e-6);
+    }
+  }
+  s.validate();
+
+  auto message = [](const char* text) {
+    try {
+      parseSceneDescription(text);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(R"({"version": 1, "material": {"labels": {"bone": {"extinction": 1}}}})")
+              .find("'bone'"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"version": 1, "material": {"labels": {"2": {"albedo": 0.5}}}})")
+              .find("material.labels.2"),
+            std::string::npos);
+  EXPECT_NE(
+    message(R"({"version": 1, "material": {"labels": {"2": {"extinction": 1, "albedo": 3}}}})")
+      .find("material.labels.2.albedo"),
+    std::string::npos);
+  EXPECT_NE(message(R"({"version": 1, "material": {"extinction": [[0, 1]],
+                      "labels": {"2": {"extinction": 1}}}})")
+              .find("not both"),
+            std::string::npos);
+}
+
 TEST(Material, PresetsGiveValidScenes)
 {
   for (const std::string& name : materialPresetNames()) {
