@@ -245,93 +245,108 @@ LinkSet refineLinks(const ClusterTree& tree,
   const SpreadCorrection spread(tree.grid(0).spacing);
   tbb::combinable<std::vector<Accepted>> accepted;
   int round = 0;
+  // Candidates are examined in chunks, with a progress report (and so a
+  // chance to abort) after each.
+  constexpr std::size_t kChunk = std::size_t(1) << 16;
   while (!todo.empty()) {
     tbb::combinable<std::vector<Pair>> next;
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, todo.size(), 256), [&](const auto& range) {
-      auto& out = next.local();
-      auto& keep = accepted.local();
-      std::array<Index, 8> ka, kb;
-      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-        const Index a = todo[k].a, b = todo[k].b;
-        const bool pa = tree.isPatch(a), pb = tree.isPatch(b);
-        if (pa && pb && tree.face(a) == tree.face(b)) {
-          continue; // coplanar: they cannot see each other
-        }
-        if (a == b) { // a cluster with itself: its children with each other
-          const int n = tree.children(a, ka);
-          for (int i = 0; i < n; ++i) {
-            for (int j = i; j < n; ++j) {
-              out.push_back({ ka[i], ka[j] });
-            }
-          }
-          continue;
-        }
-        const double sa = tree.sigma(a), sb = tree.sigma(b);
-        if (sa <= 0.0 && sb <= 0.0) {
-          continue; // two empty clusters exchange nothing
-        }
-        const bool leafA = tree.isLeaf(a), leafB = tree.isLeaf(b);
-        const int gap = tree.gap(a, b);
-        bool link = false;
-        double gamma = 0.0;
-        if (gap > opt.nearRadius) {
-          if (leafA && leafB) {
-            link = true;
-            gamma =
-              gap <= kCorrectedReach + 1
-                ? closeLeafGamma(
-                    tree, a, b, pa || pb ? 1.0 : spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b)))
-                : linkGamma(tree, a, b, opt.depthTolerance);
-          } else {
-            const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
-            const double r = (cb - ca).norm();
-            const Vec3 w = (cb - ca) / r;
-            const double ra = tree.radius(a), rb = tree.radius(b);
-            const double geometric = (ra * ra + rb * rb) / (r * r);
-            const int level = std::max(tree.level(a), tree.level(b));
-            const VoxelPyramid::Depth d = tree.pyramid().opticalDepth(ca, cb, level);
-            const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
-            const double err = std::min(1.0, geometric) + std::min(1.0, 0.5 * (d.upper - d.lower)) +
-                               std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
-            // The size of the exchange the link may get wrong: attenuated only
-            // by the medium between the two boxes, since the centroid line's
-            // depth inside a cluster can hide its lit surface entirely.
-            const double t0 = exitDistance(tree, a, ca, w), t1 = r - exitDistance(tree, b, cb, -w);
-            const double between =
-              t1 > t0 ? tree.pyramid().opticalDepth(ca + t0 * w, ca + t1 * w, level).lower : 0.0;
-            const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
-            const double S = directedSigma(tree, a, w, opt.viewSigma) *
-                             directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /
-                             (kPi * r * r);
-            link = x * S * err <= budget;
-            if (link) {
-              gamma = linkGamma(tree, a, b, opt.depthTolerance);
-            }
-          }
-        } else if (leafA && leafB) {
-          continue; // the near field holds this pair
-        }
-        if (link) {
-          if (gamma > 0.0) {
-            keep.push_back({ a, b, float(gamma), std::min(tree.level(a), tree.level(b)) });
-          }
-          continue;
-        }
-        // Split the larger node (a leaf cannot be split).
-        const bool splitA = leafB || (!leafA && tree.radius(a) >= tree.radius(b));
-        if (splitA) {
-          const int n = tree.children(a, ka);
-          for (int i = 0; i < n; ++i) {
-            out.push_back({ ka[i], b });
-          }
-        } else {
-          const int n = tree.children(b, kb);
-          for (int i = 0; i < n; ++i) {
-            out.push_back({ a, kb[i] });
-          }
-        }
+    for (std::size_t c0 = 0; c0 < todo.size(); c0 += kChunk) {
+      if (c0 > 0) {
+        progress.report(std::min(0.9, 0.1 * (round + double(c0) / double(todo.size()))));
       }
-    });
+      tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(c0, std::min(todo.size(), c0 + kChunk), 256),
+        [&](const auto& range) {
+          auto& out = next.local();
+          auto& keep = accepted.local();
+          std::array<Index, 8> ka, kb;
+          for (std::size_t k = range.begin(); k != range.end(); ++k) {
+            const Index a = todo[k].a, b = todo[k].b;
+            const bool pa = tree.isPatch(a), pb = tree.isPatch(b);
+            if (pa && pb && tree.face(a) == tree.face(b)) {
+              continue; // coplanar: they cannot see each other
+            }
+            if (a == b) { // a cluster with itself: its children with each other
+              const int n = tree.children(a, ka);
+              for (int i = 0; i < n; ++i) {
+                for (int j = i; j < n; ++j) {
+                  out.push_back({ ka[i], ka[j] });
+                }
+              }
+              continue;
+            }
+            const double sa = tree.sigma(a), sb = tree.sigma(b);
+            if (sa <= 0.0 && sb <= 0.0) {
+              continue; // two empty clusters exchange nothing
+            }
+            const bool leafA = tree.isLeaf(a), leafB = tree.isLeaf(b);
+            const int gap = tree.gap(a, b);
+            bool link = false;
+            double gamma = 0.0;
+            if (gap > opt.nearRadius) {
+              if (leafA && leafB) {
+                link = true;
+                gamma = gap <= kCorrectedReach + 1
+                          ? closeLeafGamma(
+                              tree,
+                              a,
+                              b,
+                              pa || pb ? 1.0 : spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b)))
+                          : linkGamma(tree, a, b, opt.depthTolerance);
+              } else {
+                const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
+                const double r = (cb - ca).norm();
+                const Vec3 w = (cb - ca) / r;
+                const double ra = tree.radius(a), rb = tree.radius(b);
+                const double geometric = (ra * ra + rb * rb) / (r * r);
+                const int level = std::max(tree.level(a), tree.level(b));
+                const VoxelPyramid::Depth d = tree.pyramid().opticalDepth(ca, cb, level);
+                const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
+                const double err = std::min(1.0, geometric) +
+                                   std::min(1.0, 0.5 * (d.upper - d.lower)) +
+                                   std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
+                // The size of the exchange the link may get wrong: attenuated only
+                // by the medium between the two boxes, since the centroid line's
+                // depth inside a cluster can hide its lit surface entirely.
+                const double t0 = exitDistance(tree, a, ca, w),
+                             t1 = r - exitDistance(tree, b, cb, -w);
+                const double between =
+                  t1 > t0 ? tree.pyramid().opticalDepth(ca + t0 * w, ca + t1 * w, level).lower
+                          : 0.0;
+                const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
+                const double S = directedSigma(tree, a, w, opt.viewSigma) *
+                                 directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /
+                                 (kPi * r * r);
+                link = x * S * err <= budget;
+                if (link) {
+                  gamma = linkGamma(tree, a, b, opt.depthTolerance);
+                }
+              }
+            } else if (leafA && leafB) {
+              continue; // the near field holds this pair
+            }
+            if (link) {
+              if (gamma > 0.0) {
+                keep.push_back({ a, b, float(gamma), std::min(tree.level(a), tree.level(b)) });
+              }
+              continue;
+            }
+            // Split the larger node (a leaf cannot be split).
+            const bool splitA = leafB || (!leafA && tree.radius(a) >= tree.radius(b));
+            if (splitA) {
+              const int n = tree.children(a, ka);
+              for (int i = 0; i < n; ++i) {
+                out.push_back({ ka[i], b });
+              }
+            } else {
+              const int n = tree.children(b, kb);
+              for (int i = 0; i < n; ++i) {
+                out.push_back({ a, kb[i] });
+              }
+            }
+          }
+        });
+    }
     todo.clear();
     next.combine_each([&](std::vector<Pair>& l) {
       todo.insert(todo.end(), l.begin(), l.end());

@@ -386,3 +386,46 @@ TEST(VolumetricRadiosity, LightPropertiesAndARenderersLights)
     EXPECT_NEAR(fromRenderer[i], reference[i], 1e-5 * reference[i] + 1e-9) << i;
   }
 }
+
+TEST(VolumetricRadiosity, AbortStopsTheSolveAndTheNextRunSucceeds)
+{
+  auto image = makeImage<vtkFloatArray>();
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(
+    R"({"version": 1, "lights": [{"type": "directional", "direction": [0, 0, -1]}]})");
+  struct Progress
+  {
+    vtkVolumetricRadiosity* filter;
+    double abortAt = 0.3, requested = -1.0, last = 0.0;
+    int eventsAfter = 0;
+  } p{ f };
+  vtkNew<vtkCallbackCommand> cb;
+  cb->SetClientData(&p);
+  cb->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
+    auto* s = static_cast<Progress*>(self);
+    s->last = *static_cast<double*>(data);
+    if (s->requested >= 0.0) {
+      ++s->eventsAfter;
+    } else if (s->last >= s->abortAt) {
+      s->requested = s->last;
+      s->filter->AbortExecuteOn();
+    }
+  });
+  f->AddObserver(vtkCommand::ProgressEvent, cb);
+  f->Update();
+  // Stopped at the first progress check after the request: no field.
+  ASSERT_GE(p.requested, 0.0);
+  EXPECT_LT(p.last, 0.5);
+  EXPECT_LE(p.eventsAfter, 1);
+  EXPECT_TRUE(volrad::test::incidentRadiation(f->GetOutput()).empty());
+
+  // The same filter then solves normally.
+  p.abortAt = 2.0;
+  p.requested = -1.0;
+  f->AbortExecuteOff();
+  f->Modified();
+  f->Update();
+  EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()).size(),
+            std::size_t(image->GetNumberOfPoints()));
+}
