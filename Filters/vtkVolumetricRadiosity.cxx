@@ -379,6 +379,8 @@ int vtkVolumetricRadiosity::RequestInformation(vtkInformation* request,
 vtkVolumetricRadiosity::~vtkVolumetricRadiosity()
 {
   this->SetMaterialPreset(nullptr);
+  this->SetSolverMethod(nullptr);
+  this->SetMaterialScalars(nullptr);
   this->SetSceneFileName(nullptr);
   this->SetSceneJSON(nullptr);
 }
@@ -400,6 +402,48 @@ volradTransferFunctionProperty(AlbedoFunction, vtkPiecewiseFunction);
 volradTransferFunctionProperty(ColorFunction, vtkColorTransferFunction);
 volradTransferFunctionProperty(EmissionFunction, vtkColorTransferFunction);
 #undef volradTransferFunctionProperty
+
+void vtkVolumetricRadiosity::SetOpenFace(int face, double r, double g, double b)
+{
+  if (face < 0 || face > 5) {
+    vtkErrorMacro("SetOpenFace: face " << face
+                                       << " is not 0-5 (xmin, xmax, ymin, ymax, zmin, zmax)");
+    return;
+  }
+  this->Faces[face] = { 1.0, r, g, b, 0.0, 0.0, 0.0 };
+  this->Modified();
+}
+
+void vtkVolumetricRadiosity::SetWallFace(int face,
+                                         double r,
+                                         double g,
+                                         double b,
+                                         double er,
+                                         double eg,
+                                         double eb)
+{
+  if (face < 0 || face > 5) {
+    vtkErrorMacro("SetWallFace: face " << face
+                                       << " is not 0-5 (xmin, xmax, ymin, ymax, zmin, zmax)");
+    return;
+  }
+  this->Faces[face] = { 2.0, r, g, b, er, eg, eb };
+  this->Modified();
+}
+
+void vtkVolumetricRadiosity::SetEnvironmentRadiance(double r, double g, double b)
+{
+  for (int f = 0; f < 6; ++f) {
+    this->Faces[f] = { 1.0, r, g, b, 0.0, 0.0, 0.0 };
+  }
+  this->Modified();
+}
+
+void vtkVolumetricRadiosity::RemoveAllFaceSettings()
+{
+  this->Faces = {};
+  this->Modified();
+}
 
 void vtkVolumetricRadiosity::AddDirectionalLight(double dx,
                                                  double dy,
@@ -516,6 +560,42 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     } else if (this->SceneFileName && *this->SceneFileName) {
       description = volrad::readSceneDescription(this->SceneFileName);
     }
+    // Properties over the scene file.
+    if (this->Channels > 0) {
+      if (this->Channels == 2) {
+        throw volrad::Error("Channels must be 1 or 3");
+      }
+      description.channels = this->Channels;
+    }
+    if (this->SolverMethod && *this->SolverMethod) {
+      description.solver.method = this->SolverMethod;
+    }
+    if (this->Epsilon > 0.0) {
+      description.solver.epsilon = this->Epsilon;
+    }
+    if (this->MaterialScalars && *this->MaterialScalars) {
+      description.material.scalars = this->MaterialScalars;
+    }
+    for (int f = 0; f < 6; ++f) {
+      const auto& face = this->Faces[f];
+      if (face[0] == 0.0) {
+        continue;
+      }
+      const int C = description.channels;
+      auto rgb = [C](double r, double g, double b) {
+        return C == 1 ? volrad::uniformChannels((r + g + b) / 3.0)
+                      : volrad::ChannelValues{ r, g, b };
+      };
+      volrad::BoundaryCondition bc;
+      if (face[0] == 1.0) {
+        bc.radiance = rgb(face[1], face[2], face[3]);
+      } else {
+        bc.type = volrad::BoundaryCondition::Type::Wall;
+        bc.reflectance = rgb(face[1], face[2], face[3]);
+        bc.emission = rgb(face[4], face[5], face[6]);
+      }
+      description.boundary[f] = bc;
+    }
     applyMaterialProperties(this, description);
     for (const auto& l : this->Lights) {
       const int C = description.channels;
@@ -585,4 +665,11 @@ void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "EmissionFunction: " << this->EmissionFunction.Get() << "\n";
   os << indent << "SurfaceGradient: " << this->SurfaceGradient << "\n";
   os << indent << "Lights: " << this->Lights.size() << "\n";
+  os << indent << "Channels: " << this->Channels << "\n";
+  os << indent << "SolverMethod: " << (this->SolverMethod ? this->SolverMethod : "(scene's)")
+     << "\n";
+  os << indent << "Epsilon: " << this->Epsilon << "\n";
+  os << indent
+     << "MaterialScalars: " << (this->MaterialScalars ? this->MaterialScalars : "(scene's)")
+     << "\n";
 }

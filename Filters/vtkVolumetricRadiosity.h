@@ -71,6 +71,40 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Scene settings as properties; each replaces the scene file's when set.
+   * Channels: 1 (grey) or 3 (RGB); 0 (default): the scene's.
+   * SolverMethod: "hierarchical" or "dense"; empty (default): the scene's.
+   * Epsilon: the hierarchical solver's relative accuracy; <= 0: the scene's.
+   * MaterialScalars: the point array the material maps and whose gradient
+   * gives the normals; empty: the scene's, else the active scalars.
+   */
+  vtkSetClampMacro(Channels, int, 0, 3);
+  vtkGetMacro(Channels, int);
+  vtkSetStringMacro(SolverMethod);
+  vtkGetStringMacro(SolverMethod);
+  vtkSetMacro(Epsilon, double);
+  vtkGetMacro(Epsilon, double);
+  vtkSetStringMacro(MaterialScalars);
+  vtkGetStringMacro(MaterialScalars);
+  ///@}
+
+  ///@{
+  /**
+   * The faces of the domain (0-5: xmin, xmax, ymin, ymax, zmin, zmax, in
+   * index directions), besides the scene file's: an open face with incoming
+   * radiance (r, g, b) [W/(m^2 sr)], or a Lambertian wall of reflectance
+   * (r, g, b) in [0, 1) and emission (er, eg, eb) [W/m^2].
+   * SetEnvironmentRadiance opens every face with one radiance.
+   */
+  void SetOpenFace(int face, double r, double g, double b);
+  void SetWallFace(int face, double r, double g, double b, double er, double eg, double eb);
+  void SetEnvironmentRadiance(double r, double g, double b);
+  /** Back to the scene file's faces. */
+  void RemoveAllFaceSettings();
+  ///@}
+
+  ///@{
   /** Threads of the solve; 0 (default) uses all cores, 1 is deterministic. */
   vtkSetClampMacro(NumberOfThreads, int, 0, 4096);
   vtkGetMacro(NumberOfThreads, int);
@@ -148,6 +182,12 @@ protected:
   vtkSmartPointer<vtkColorTransferFunction> ColorFunction;
   vtkSmartPointer<vtkColorTransferFunction> EmissionFunction;
   double SurfaceGradient = -1.0;
+  int Channels = 0;
+  char* SolverMethod = nullptr;
+  double Epsilon = 0.0;
+  char* MaterialScalars = nullptr;
+  /// Per face set here: 0 none, 1 open, 2 wall; then (r, g, b, er, eg, eb).
+  std::array<std::array<double, 7>, 6> Faces{};
   /// Per light: 0 directional / 1 point, then direction or position, then r, g, b.
   std::vector<std::array<double, 7>> Lights;
 

@@ -429,3 +429,32 @@ TEST(VolumetricRadiosity, AbortStopsTheSolveAndTheNextRunSucceeds)
   EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()).size(),
             std::size_t(image->GetNumberOfPoints()));
 }
+
+TEST(VolumetricRadiosity, SceneSettingsAsPropertiesMatchTheSceneFile)
+{
+  auto image = makeImage<vtkFloatArray>();
+  const std::vector<float> reference = runFilter(image, R"({"version": 1, "channels": 3,
+    "solver": {"method": "dense"},
+    "boundary": {"zmin": {"type": "wall", "reflectance": [0.5, 0.4, 0.3], "emission": [0, 0, 1]},
+                 "zmax": {"type": "open", "radiance": [0.1, 0.2, 0.3]}},
+    "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "irradiance": 2}]})");
+  ASSERT_FALSE(reference.empty());
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetChannels(3);
+  f->SetSolverMethod("dense");
+  f->SetWallFace(4, 0.5, 0.4, 0.3, 0, 0, 1);
+  f->SetOpenFace(5, 0.1, 0.2, 0.3);
+  f->AddDirectionalLight(0.3, -0.2, -1, 2, 2, 2);
+  f->Update();
+  EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()), reference);
+  auto* method =
+    vtkStringArray::SafeDownCast(f->GetOutput()->GetFieldData()->GetAbstractArray("SolverMethod"));
+  ASSERT_NE(method, nullptr);
+  EXPECT_EQ(method->GetValue(0), "dense");
+
+  // Back to the scene's faces: a different field.
+  f->RemoveAllFaceSettings();
+  f->Update();
+  EXPECT_NE(volrad::test::incidentRadiation(f->GetOutput()), reference);
+}
