@@ -6,6 +6,8 @@
 // a non-zero exit; the output file is written atomically.
 #include "vtkVolumetricRadiosity.h"
 
+#include "VolumeSnapshot.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDICOMImageReader.h"
@@ -17,6 +19,7 @@
 #include "vtkMetaImageReader.h"
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
+#include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkSmartPointer.h"
@@ -38,7 +41,7 @@
 namespace {
 
 const char* kUsage =
-  R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti [--shrink N] [--threads N]
+  R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti [--png PICTURE.png] [--shrink N] [--threads N]
 
 Solves volumetric radiosity in the volume INPUT lit as the scene file says
 (docs/scene-format.md; without one, the defaults and the input's arrays
@@ -54,6 +57,8 @@ DICOM files.
 options:
   --scene FILE   scene file (JSON, version 1)
   -o, --output   output .vti file (written only if the solve succeeds)
+  --png FILE     also a picture: the lit volume rendered from its RenderRGBA
+                 array (needs an X display: run under xvfb-run -a without one)
   --shrink N     solve on a grid N times coarser along each axis (averaging)
   --threads N    threads (default 0: all cores; 1: deterministic)
   -h, --help     this text
@@ -155,7 +160,7 @@ std::string fieldValue(vtkImageData* image, const char* name)
 
 int main(int argc, char* argv[])
 {
-  std::string input, scene, output;
+  std::string input, scene, output, png;
   int threads = 0, shrink = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -173,6 +178,8 @@ int main(int argc, char* argv[])
         scene = value("--scene");
       } else if (arg == "-o" || arg == "--output") {
         output = value("-o");
+      } else if (arg == "--png") {
+        png = value("--png");
       } else if (arg == "--threads" || arg == "--shrink") {
         const std::string v = value(arg.c_str());
         std::size_t used = 0;
@@ -274,6 +281,16 @@ int main(int argc, char* argv[])
     return fail(errors.messages.empty() ? "the solve failed" : errors.messages);
   }
 
+  // The picture first, in memory: a failed rendering leaves no output at all.
+  vtkSmartPointer<vtkImageData> picture;
+  if (!png.empty()) {
+    try {
+      picture = volrad::renderSnapshot(result);
+    } catch (const std::exception& e) {
+      return fail(std::string("cannot render --png: ") + e.what());
+    }
+  }
+
   // Write next to the target, then rename: no partial file on failure.
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(partial.c_str());
@@ -287,6 +304,20 @@ int main(int argc, char* argv[])
   if (std::rename(partial.c_str(), output.c_str()) != 0) {
     std::remove(partial.c_str());
     return fail("cannot write '" + output + "'");
+  }
+  if (picture) {
+    const std::string partialPng = png + ".partial.png";
+    vtkNew<vtkPNGWriter> pngWriter;
+    pngWriter->SetFileName(partialPng.c_str());
+    pngWriter->SetInputData(picture);
+    pngWriter->AddObserver(vtkCommand::ErrorEvent, onError);
+    pngWriter->Write();
+    if (!errors.messages.empty() || std::rename(partialPng.c_str(), png.c_str()) != 0) {
+      std::remove(partialPng.c_str());
+      return fail("wrote " + output + " but cannot write '" + png + "'" +
+                  (errors.messages.empty() ? "" : ": " + errors.messages));
+    }
+    std::cout << "volrad: wrote " << png << "\n";
   }
   std::cout
     << "volrad: wrote " << output << "\n"

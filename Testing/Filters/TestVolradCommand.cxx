@@ -32,11 +32,12 @@ struct CommandRun
   std::string output;
 };
 
-CommandRun run(const std::string& args)
+/// Runs volrad with `args` (after `prefix`, e.g. "env -u DISPLAY ").
+CommandRun run(const std::string& args, const std::string& prefix = "")
 {
   const std::string log = std::string(VOLRAD_TEST_OUTPUT_DIR) + "/volrad.log";
-  const int status =
-    std::system((std::string(VOLRAD_COMMAND) + " " + args + " > " + log + " 2>&1").c_str());
+  const int status = std::system(
+    (prefix + std::string(VOLRAD_COMMAND) + " " + args + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   return { WEXITSTATUS(status), text };
@@ -213,4 +214,18 @@ TEST(VolradCommand, UnknownFormatsAndBadShrinkAreNamed)
   r = run(kData + "/neghip16.vti --shrink 0 -o " + kOut + "/x.vti");
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("--shrink"), std::string::npos) << r.output;
+}
+
+TEST(VolradCommand, APictureWithoutADisplayIsAnErrorAndNoOutput)
+{
+  const std::string scene = kOut + "/dense.json", out = kOut + "/nodisplay.vti";
+  std::ofstream(scene) << R"({"version": 1, "solver": {"method": "dense"}})";
+  std::remove(out.c_str());
+  const CommandRun r = run("--scene " + scene + " " + kData + "/neghip16.vti -o " + out +
+                             " --png " + kOut + "/nodisplay.png",
+                           "env -u DISPLAY ");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("needs an X display"), std::string::npos) << r.output;
+  EXPECT_FALSE(exists(out));
+  EXPECT_FALSE(exists(kOut + "/nodisplay.png"));
 }

@@ -9,23 +9,16 @@
 // instead (look at it first).
 #include "vtkVolumetricRadiosity.h"
 
-#include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
-#include "vtkFixedPointVolumeRayCastMapper.h"
+#include "VolumeSnapshot.h"
+
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkImageDifference.h"
 #include "vtkNew.h"
 #include "vtkPNGReader.h"
 #include "vtkPNGWriter.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
-#include "vtkRenderWindow.h"
-#include "vtkRenderer.h"
 #include "vtkSmartPointer.h"
-#include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
-#include "vtkWindowToImageFilter.h"
 
 #include <gtest/gtest.h>
 
@@ -92,53 +85,17 @@ TEST(RenderingRegression, RenderRGBAOfALitCloud)
   radiosity->Update();
   vtkImageData* lit = radiosity->GetOutput();
   ASSERT_NE(lit->GetPointData()->GetArray("RenderRGBA"), nullptr);
-  lit->GetPointData()->SetActiveScalars("RenderRGBA");
-
-  vtkNew<vtkFixedPointVolumeRayCastMapper> mapper;
-  mapper->SetInputData(lit);
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0, 0.0);
-  opacity->AddPoint(255, 1.0);
-  vtkNew<vtkVolumeProperty> property;
-  property->IndependentComponentsOff();
-  property->SetScalarOpacity(opacity);
-  double spacing[3];
-  lit->GetSpacing(spacing);
-  const double h = (spacing[0] + spacing[1] + spacing[2]) / 3.0;
-  property->SetScalarOpacityUnitDistance(h);
-  // Samples at a quarter of a voxel (the default, 1 world unit, is a voxel
-  // of a 1-wide volume 16 times over).
-  mapper->AutoAdjustSampleDistancesOff();
-  mapper->SetSampleDistance(0.25 * h);
-  property->SetInterpolationTypeToLinear();
-  property->ShadeOff();
-  vtkNew<vtkVolume> volume;
-  volume->SetMapper(mapper);
-  volume->SetProperty(property);
-
-  vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
-  renderer->SetBackground(0.1, 0.1, 0.12);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Elevation(25);
-  renderer->GetActiveCamera()->Azimuth(30);
-  renderer->GetActiveCamera()->Zoom(1.4);
-  renderer->ResetCameraClippingRange();
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetSize(300, 300);
-  window->AddRenderer(renderer);
-  window->Render();
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->Update();
+  // volrad --png's picture, at 300 x 300.
+  volrad::SnapshotView view;
+  view.width = view.height = 300;
+  const vtkSmartPointer<vtkImageData> picture = volrad::renderSnapshot(lit, view);
 
   const std::string baseline = VOLRAD_BASELINE_DIR "/cloud_rgba.png";
   const std::string out = VOLRAD_TEST_OUTPUT_DIR "/cloud_rgba.png";
-  writePng(grab->GetOutput(), out);
+  writePng(picture, out);
   const char* update = std::getenv("VOLRAD_UPDATE_BASELINES");
   if (update && std::string(update) == "1") {
-    writePng(grab->GetOutput(), baseline);
+    writePng(picture, baseline);
     GTEST_SKIP() << "wrote the baseline " << baseline;
   }
   ASSERT_TRUE(std::ifstream(baseline).good()) << "no baseline " << baseline;
@@ -146,7 +103,7 @@ TEST(RenderingRegression, RenderRGBAOfALitCloud)
   valid->SetFileName(baseline.c_str());
   valid->Update();
   vtkNew<vtkImageDifference> diff;
-  diff->SetInputData(grab->GetOutput());
+  diff->SetInputData(picture);
   diff->SetImageData(valid->GetOutput());
   diff->SetThreshold(kPixelThreshold);
   diff->Update();
