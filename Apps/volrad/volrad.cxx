@@ -8,11 +8,14 @@
 
 #include "VolumeSnapshot.h"
 
+#include "volrad/VdbVolume.h"
+
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDICOMImageReader.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
+#include "vtkFloatArray.h"
 #include "vtkImageChangeInformation.h"
 #include "vtkImageData.h"
 #include "vtkImageShrink3D.h"
@@ -24,6 +27,7 @@
 #include "vtkSLCReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkStructuredPointsReader.h"
+#include "vtkTrivialProducer.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 
@@ -41,7 +45,8 @@
 namespace {
 
 const char* kUsage =
-  R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti [--png PICTURE.png] [--shrink N] [--threads N]
+  R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti|.vdb [--png PICTURE.png] [--grid NAME]
+              [--shrink N] [--threads N]
 
 Solves volumetric radiosity in the volume INPUT lit as the scene file says
 (docs/scene-format.md; without one, the defaults and the input's arrays
@@ -51,14 +56,17 @@ IsotropicRadiosity, DiffuseRadiosity, FrontIncidentRadiation and
 AbsorbedPower, and the solve's statistics as field data.
 
 INPUT: VTK XML image data (.vti), MetaImage (.mhd, .mha), NRRD (.nrrd,
-.nhdr), SLC (.slc), legacy VTK structured points (.vtk), or a directory of
-DICOM files.
+.nhdr), SLC (.slc), legacy VTK structured points (.vtk), OpenVDB (.vdb: one
+grid over its active box, the scalars a material maps), or a directory of
+DICOM files. OUTPUT: .vti (the input plus the fields), or .vdb (the fields
+as grids: float, vec3s for RGB).
 
 options:
   --scene FILE   scene file (JSON, version 1)
   -o, --output   output .vti file (written only if the solve succeeds)
   --png FILE     also a picture: the lit volume rendered from its RenderRGBA
                  array (needs an X display: run under xvfb-run -a without one)
+  --grid NAME    the grid of a .vdb input (default: its first)
   --shrink N     solve on a grid N times coarser along each axis (averaging)
   --threads N    threads (default 0: all cores; 1: deterministic)
   -h, --help     this text
@@ -71,9 +79,79 @@ std::string lowerExtension(const std::string& path)
   return e;
 }
 
+/// An OpenVDB grid as image data: its active box, a point array named after
+/// the grid (the active scalars).
+vtkSmartPointer<vtkAlgorithm> readVdb(const std::string& path, const std::string& grid)
+{
+  const volrad::DenseVolume v = volrad::readVdbGrid(path, grid);
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(v.dims[0], v.dims[1], v.dims[2]);
+  image->SetSpacing(v.spacing[0], v.spacing[1], v.spacing[2]);
+  image->SetOrigin(v.origin[0], v.origin[1], v.origin[2]);
+  vtkNew<vtkFloatArray> values;
+  values->SetName(v.name.c_str());
+  values->SetNumberOfComponents(v.components);
+  values->SetNumberOfTuples(image->GetNumberOfPoints());
+  std::copy(v.values.begin(), v.values.end(), values->GetPointer(0));
+  image->GetPointData()->SetScalars(values);
+  auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
+  producer->SetOutput(image);
+  return producer;
+}
+
+/// The output fields as OpenVDB grids (float, or vec3s for RGB), written
+/// next to the target and renamed.
+void writeVdb(vtkImageData* result, const std::string& path)
+{
+  std::vector<volrad::DenseVolume> grids;
+  for (const char* name : { "IncidentRadiation",
+                            "IsotropicRadiosity",
+                            "DiffuseRadiosity",
+                            "FrontIncidentRadiation",
+                            "AbsorbedPower" }) {
+    vtkDataArray* a = result->GetPointData()->GetArray(name);
+    if (!a) {
+      continue;
+    }
+    volrad::DenseVolume v;
+    v.name = name;
+    result->GetDimensions(v.dims.data());
+    double spacing[3], origin[3];
+    result->GetSpacing(spacing);
+    result->GetOrigin(origin);
+    int extent[6];
+    result->GetExtent(extent);
+    for (int k = 0; k < 3; ++k) {
+      v.spacing[k] = spacing[k];
+      v.origin[k] = origin[k] + extent[2 * k] * spacing[k];
+    }
+    v.components = a->GetNumberOfComponents();
+    v.values.resize(std::size_t(a->GetNumberOfTuples()) * v.components);
+    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) {
+      for (int c = 0; c < v.components; ++c) {
+        v.values[std::size_t(i) * v.components + c] = float(a->GetComponent(i, c));
+      }
+    }
+    grids.push_back(std::move(v));
+  }
+  const std::string partial = path + ".partial.vdb";
+  try {
+    volrad::writeVdbGrids(partial, grids);
+  } catch (...) {
+    std::remove(partial.c_str());
+    throw;
+  }
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    std::remove(partial.c_str());
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
+}
+
 /// The reader for a path: by its extension, or DICOM for a directory.
 /// Null (and `error` set) for a format volrad does not read.
-vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path, std::string& error)
+vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path,
+                                         const std::string& grid,
+                                         std::string& error)
 {
   if (std::filesystem::is_directory(path)) {
     auto r = vtkSmartPointer<vtkDICOMImageReader>::New();
@@ -81,6 +159,14 @@ vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path, std::string& e
     return r;
   }
   const std::string e = lowerExtension(path);
+  if (e == ".vdb") {
+    try {
+      return readVdb(path, grid);
+    } catch (const std::exception& ex) {
+      error = ex.what();
+      return nullptr;
+    }
+  }
   if (e == ".vti") {
     auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
     r->SetFileName(path.c_str());
@@ -107,7 +193,7 @@ vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path, std::string& e
     return r;
   }
   error = "'" + path + "': unknown volume format '" + e +
-          "' (volrad reads .vti, .mhd, .mha, .nrrd, .nhdr, .slc, .vtk and DICOM directories)";
+          "' (volrad reads .vti, .mhd, .mha, .nrrd, .nhdr, .slc, .vtk, .vdb and DICOM directories)";
   return nullptr;
 }
 
@@ -160,7 +246,7 @@ std::string fieldValue(vtkImageData* image, const char* name)
 
 int main(int argc, char* argv[])
 {
-  std::string input, scene, output, png;
+  std::string input, scene, output, png, grid;
   int threads = 0, shrink = 1;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -180,6 +266,8 @@ int main(int argc, char* argv[])
         output = value("-o");
       } else if (arg == "--png") {
         png = value("--png");
+      } else if (arg == "--grid") {
+        grid = value("--grid");
       } else if (arg == "--threads" || arg == "--shrink") {
         const std::string v = value(arg.c_str());
         std::size_t used = 0;
@@ -214,7 +302,7 @@ int main(int argc, char* argv[])
     return fail("cannot read the input file '" + input + "'");
   }
   std::string formatError;
-  vtkSmartPointer<vtkAlgorithm> reader = makeReader(input, formatError);
+  vtkSmartPointer<vtkAlgorithm> reader = makeReader(input, grid, formatError);
   if (!reader) {
     return fail(formatError);
   }
@@ -291,6 +379,15 @@ int main(int argc, char* argv[])
     }
   }
 
+  if (lowerExtension(output) == ".vdb") {
+    try {
+      writeVdb(result, output);
+    } catch (const std::exception& e) {
+      return fail(e.what());
+    }
+    std::cout << "volrad: wrote " << output << " (OpenVDB grids of the output fields)\n";
+    return 0;
+  }
   // Write next to the target, then rename: no partial file on failure.
   vtkNew<vtkXMLImageDataWriter> writer;
   writer->SetFileName(partial.c_str());

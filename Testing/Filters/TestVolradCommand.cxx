@@ -14,6 +14,8 @@
 #include "vtkVariant.h"
 #include "vtkXMLImageDataReader.h"
 
+#include "volrad/VdbVolume.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -228,4 +230,50 @@ TEST(VolradCommand, APictureWithoutADisplayIsAnErrorAndNoOutput)
   EXPECT_NE(r.output.find("needs an X display"), std::string::npos) << r.output;
   EXPECT_FALSE(exists(out));
   EXPECT_FALSE(exists(kOut + "/nodisplay.png"));
+}
+
+TEST(VolradCommand, OpenVdbInAndOut)
+{
+  if (!volrad::vdbSupported()) {
+    GTEST_SKIP() << "built without OpenVDB";
+  }
+  // A density blob as a grid, placed off the origin.
+  volrad::DenseVolume blob;
+  blob.name = "density";
+  blob.dims = { 9, 8, 7 };
+  blob.indexLower = { 3, -4, 10 };
+  blob.spacing = volrad::Vec3(0.25, 0.25, 0.25);
+  blob.origin = volrad::Vec3(0.75, -1.0, 2.5);
+  for (int z = 0; z < 7; ++z) {
+    for (int y = 0; y < 8; ++y) {
+      for (int x = 0; x < 9; ++x) {
+        const double r2 = (x - 4) * (x - 4) + (y - 3.5) * (y - 3.5) + (z - 3) * (z - 3);
+        blob.values.push_back(float(std::max(0.05, 1.0 - r2 / 20.0)));
+      }
+    }
+  }
+  const std::string in = kOut + "/blob.vdb", out = kOut + "/blob-lit.vdb";
+  volrad::writeVdbGrids(in, { blob });
+  const std::string scene = kOut + "/vdb.json";
+  std::ofstream(scene) << R"({"version": 1, "material": {"preset": "cloud"},
+    "lights": [{"type": "directional", "direction": [0, 0, -1]}], "solver": {"method": "dense"}})";
+  std::remove(out.c_str());
+  const CommandRun r = run(in + " --grid density --scene " + scene + " -o " + out);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const volrad::DenseVolume g = volrad::readVdbGrid(out, "IncidentRadiation");
+  EXPECT_EQ(g.dims, blob.dims); // every voxel lit: the whole box active
+  EXPECT_NEAR((g.origin - blob.origin).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((g.spacing - blob.spacing).norm(), 0.0, 1e-12);
+  EXPECT_GT(*std::min_element(g.values.begin(), g.values.end()), 0.f);
+  // The lit top (the light travels down -z) is brighter than the bottom.
+  EXPECT_GT(g.values.back(), g.values.front());
+  for (const char* name : { "IsotropicRadiosity", "AbsorbedPower" }) {
+    EXPECT_NO_THROW(volrad::readVdbGrid(out, name)) << name;
+  }
+  // An absent grid is named, with the ones there are; nothing written.
+  std::remove(out.c_str());
+  const CommandRun bad = run(in + " --grid temperature -o " + out);
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.output.find("its grids: density"), std::string::npos) << bad.output;
+  EXPECT_FALSE(exists(out));
 }
