@@ -38,6 +38,17 @@ std::vector<double> ctHead(const Grid& g)
   return hu;
 }
 
+/// The error a scene file gives ("no error" if none).
+std::string message(const char* text)
+{
+  try {
+    parseSceneDescription(text);
+  } catch (const Error& e) {
+    return std::string(e.what());
+  }
+  return std::string("no error");
+}
+
 } // namespace
 
 TEST(Material, TransferFunctionsInterpolateAndClamp)
@@ -159,14 +170,6 @@ TEST(Material, LabelTablesGiveEachLabelItsMaterial)
   }
   s.validate();
 
-  auto message = [](const char* text) {
-    try {
-      parseSceneDescription(text);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   EXPECT_NE(message(R"({"version": 1, "material": {"labels": {"bone": {"extinction": 1}}}})")
               .find("'bone'"),
             std::string::npos);
@@ -252,14 +255,6 @@ TEST(Material, SceneFileKeys)
   EXPECT_DOUBLE_EQ(d.material.map.emission[2](10.0), 2.0); // RGB point
   EXPECT_EQ(d.material.map.surfaceGradient, 0.0);
 
-  auto message = [](const char* text) {
-    try {
-      parseSceneDescription(text);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   EXPECT_NE(message(R"({"version": 1, "material": {"preset": "wood"}})").find("known: ct"),
             std::string::npos);
   EXPECT_NE(message(R"({"version": 1, "material": {"albedo": [[0, 0.5]]}})").find("extinction"),

@@ -14,6 +14,7 @@
 #include "vtkVariant.h"
 #include "vtkXMLImageDataReader.h"
 
+#include "DensityImage.h"
 #include "volrad/VdbVolume.h"
 
 #include <gtest/gtest.h>
@@ -122,21 +123,8 @@ namespace {
 /// A 10x9x8 density blob as the active scalars, with 0.5 spacing.
 vtkSmartPointer<vtkImageData> densityVolume()
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(10, 9, 8);
-  image->SetSpacing(0.5, 0.5, 0.5);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(image->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i) {
-    double x[3];
-    image->GetPoint(i, x);
-    const double r2 =
-      (x[0] - 2.25) * (x[0] - 2.25) + (x[1] - 2.0) * (x[1] - 2.0) + (x[2] - 1.75) * (x[2] - 1.75);
-    density->SetValue(i, float(std::max(0.0, 1.0 - r2 / 4.0)));
-  }
-  image->GetPointData()->SetScalars(density);
-  return image;
+  return volrad::test::densityImage(
+    { 10, 9, 8 }, 0.5, [](const double* x) { return volrad::test::blob(x, 2.25, 2.0, 1.75, 2.0); });
 }
 
 /// Reads an output .vti; null if it does not exist.

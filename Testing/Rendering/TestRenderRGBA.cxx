@@ -9,6 +9,7 @@
 // instead (look at it first).
 #include "vtkVolumetricRadiosity.h"
 
+#include "DensityImage.h"
 #include "VolumeSnapshot.h"
 
 #include "vtkFloatArray.h"
@@ -47,25 +48,10 @@ void writePng(vtkImageData* image, const std::string& path)
 /// Two overlapping blobs of density (the active scalars), 16^3.
 vtkSmartPointer<vtkImageData> blobs()
 {
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(16, 16, 16);
-  image->SetSpacing(1.0 / 16, 1.0 / 16, 1.0 / 16);
-  vtkNew<vtkFloatArray> density;
-  density->SetName("density");
-  density->SetNumberOfTuples(image->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i) {
-    double x[3];
-    image->GetPoint(i, x);
-    auto blob = [&](double cx, double cy, double cz, double r) {
-      const double d2 =
-        (x[0] - cx) * (x[0] - cx) + (x[1] - cy) * (x[1] - cy) + (x[2] - cz) * (x[2] - cz);
-      return std::max(0.0, 1.0 - d2 / (r * r));
-    };
-    density->SetValue(i,
-                      float(std::max(blob(0.35, 0.45, 0.45, 0.3), blob(0.65, 0.55, 0.55, 0.25))));
-  }
-  image->GetPointData()->SetScalars(density);
-  return image;
+  return volrad::test::densityImage({ 16, 16, 16 }, 1.0 / 16, [](const double* x) {
+    return std::max(volrad::test::blob(x, 0.35, 0.45, 0.45, 0.3),
+                    volrad::test::blob(x, 0.65, 0.55, 0.55, 0.25));
+  });
 }
 
 } // namespace
