@@ -4,11 +4,13 @@
 #include "vtkCamera.h"
 #include "vtkFixedPointVolumeRayCastMapper.h"
 #include "vtkImageData.h"
+#include "vtkMultiThreader.h"
 #include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkThreadedImageAlgorithm.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
 #include "vtkWindowToImageFilter.h"
@@ -33,7 +35,20 @@ vtkSmartPointer<vtkImageData> renderSnapshot(vtkImageData* lit, const SnapshotVi
   image->ShallowCopy(lit);
   image->GetPointData()->SetActiveScalars("RenderRGBA");
 
+  // VTK 9.1's space leaping for dependent components reads the wrong voxels
+  // in every piece of the volume but the first (it steps one component per
+  // voxel, not four), and the caster then skips blocks that hold matter. One
+  // piece avoids it: the mapper is made while imaging filters default to one
+  // thread without SMP (its space-leaping filter keeps that); the rays still
+  // use every core.
+  const bool smp = vtkThreadedImageAlgorithm::GetGlobalDefaultEnableSMP();
+  const int threads = vtkMultiThreader::GetGlobalDefaultNumberOfThreads();
+  vtkThreadedImageAlgorithm::SetGlobalDefaultEnableSMP(false);
+  vtkMultiThreader::SetGlobalDefaultNumberOfThreads(1);
   vtkNew<vtkFixedPointVolumeRayCastMapper> mapper;
+  vtkThreadedImageAlgorithm::SetGlobalDefaultEnableSMP(smp);
+  vtkMultiThreader::SetGlobalDefaultNumberOfThreads(threads);
+  mapper->SetNumberOfThreads(threads);
   mapper->SetInputData(image);
   double spacing[3];
   image->GetSpacing(spacing);

@@ -74,7 +74,7 @@ from vtkmodules.vtkRenderingCore import (
     vtkVolumeProperty,
     vtkWindowToImageFilter,
 )
-from vtkmodules.vtkRenderingVolume import vtkFixedPointVolumeRayCastMapper
+from rgba_volume import rgba_mapper
 
 from volrad import vtkVolumetricRadiosity
 
@@ -363,7 +363,8 @@ def volume_picture(hu, G, size, path):
     # CPU ray caster: the same pixels with any OpenGL (the regression test
     # relies on that), and it takes dependent unsigned char RGBA as is.
     # vtkGPUVolumeRayCastMapper also works here (llvmpipe, OpenGL 4.5).
-    mapper = vtkFixedPointVolumeRayCastMapper()
+    # rgba_mapper works around VTK 9.1's space leaping for RGBA (rgba_volume.py).
+    mapper = rgba_mapper()
     mapper.SetInputData(rgba)
     mapper.SetSampleDistance(0.5)
     mapper.SetImageSampleDistance(1.0)

@@ -2,7 +2,7 @@
 
     xvfb-run -a /usr/bin/python3 Testing/Python/test_ct_head_images.py \
         --output-dir OUT [--baseline-dir Testing/Baseline] [--threshold T] [--pixel-threshold P]
-        [--compare-only] [--update-baselines]
+        [--compare-only] [--update-baselines] [-- EXAMPLE_ARGS...]
 
 Runs the example into OUT (unless --compare-only) and compares each of its
 PNGs with the baseline of the same name the way vtkRegressionTestImage does,
@@ -14,7 +14,8 @@ fully wrong pixel. A picture whose error passes the limit fails; its
 difference image (x10) is written next to it as NAME.diff.png and the
 baseline as NAME.valid.png. Exits non-zero when any picture fails or is
 missing. --update-baselines copies OUT's pictures over the baselines (after a
-deliberate change; look at them first).
+deliberate change; look at them first). The comparison and this command
+line live in image_compare.py, shared with the other examples' image tests.
 
 Tolerance. vtkImageDifference's default per-channel threshold (105 of 255)
 is meant for geometry and lets smooth changes of shading through: turning
@@ -30,116 +31,11 @@ Turning the light by 10 degrees about the vertical axis costs
 0.003 / 1.2 / 307: the slice of G on a log scale sees every change of the
 light, the pictures of the geometry large ones.
 """
-import argparse
-import os
-import shutil
-import subprocess
 import sys
-import time
 
-from vtkmodules.vtkImagingCore import vtkImageDifference, vtkImageShiftScale
-from vtkmodules.vtkIOImage import vtkPNGReader, vtkPNGWriter
+from image_compare import main
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SOURCE = os.path.join(HERE, "..", "..")
 NAMES = ("ct_head_volume.png", "ct_head_bone.png", "ct_head_slice.png")
 
-
-def read_png(path):
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    return reader.GetOutput()
-
-
-def write_png(image, path):
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputData(image)
-    writer.Write()
-
-
-def compare(test_path, baseline_path, threshold, pixel_threshold):
-    """Returns (error, message); error None when the images cannot be compared."""
-    if not os.path.isfile(baseline_path):
-        return None, f"no baseline {baseline_path}"
-    if not os.path.isfile(test_path):
-        return None, f"the example wrote no {test_path}"
-    test, baseline = read_png(test_path), read_png(baseline_path)
-    if test.GetDimensions() != baseline.GetDimensions():
-        return None, (f"size {test.GetDimensions()[:2]} differs from the baseline's "
-                      f"{baseline.GetDimensions()[:2]}")
-    diff = vtkImageDifference()
-    diff.SetInputData(test)
-    diff.SetImageData(baseline)
-    diff.SetThreshold(pixel_threshold)
-    diff.Update()
-    error = diff.GetThresholdedError()
-    if error > threshold:
-        base = os.path.splitext(test_path)[0]
-        # The difference image, amplified as VTK's own tests do.
-        amplify = vtkImageShiftScale()
-        amplify.SetInputConnection(diff.GetOutputPort())
-        amplify.SetScale(10)
-        amplify.ClampOverflowOn()
-        amplify.SetOutputScalarTypeToUnsignedChar()
-        amplify.Update()
-        write_png(amplify.GetOutput(), base + ".diff.png")
-        shutil.copyfile(baseline_path, base + ".valid.png")
-        return error, (f"thresholded error {error:.3f} > {threshold:g}: see {base}.diff.png "
-                       f"(test {test_path}, baseline copied to {base}.valid.png)")
-    return error, f"thresholded error {error:.3f} <= {threshold:g}"
-
-
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--output-dir", required=True)
-    parser.add_argument("--baseline-dir", default=os.path.join(SOURCE, "Testing", "Baseline"))
-    parser.add_argument("--script", default=os.path.join(SOURCE, "Examples", "Python", "ct_head.py"))
-    parser.add_argument("--threshold", type=float, default=2.0,
-                        help="largest thresholded error, in fully wrong pixels (default 2)")
-    parser.add_argument("--pixel-threshold", type=int, default=30,
-                        help="colour difference per channel that costs nothing (default 30 of 255)")
-    parser.add_argument("--compare-only", action="store_true",
-                        help="compare the PNGs already in --output-dir")
-    parser.add_argument("--update-baselines", action="store_true",
-                        help="copy the pictures over the baselines instead of comparing")
-    args = parser.parse_args()
-
-    if not args.compare_only:
-        # The example's default size (400x400) is the baselines' size.
-        start = time.time()
-        run = subprocess.run([sys.executable, args.script, args.output_dir])
-        print(f"ct_head.py: exit {run.returncode}, {time.time() - start:.1f} s")
-        if run.returncode != 0:
-            return 1
-
-    if args.update_baselines:
-        os.makedirs(args.baseline_dir, exist_ok=True)
-        for name in NAMES:
-            shutil.copyfile(os.path.join(args.output_dir, name), os.path.join(args.baseline_dir, name))
-            print(f"updated {os.path.join(args.baseline_dir, name)}")
-        return 0
-
-    failed = 0
-    for name in NAMES:
-        # No stale difference images from an earlier failure.
-        for stale in (".diff.png", ".valid.png"):
-            path = os.path.join(args.output_dir, os.path.splitext(name)[0] + stale)
-            if os.path.exists(path):
-                os.remove(path)
-        error, message = compare(os.path.join(args.output_dir, name),
-                                 os.path.join(args.baseline_dir, name), args.threshold,
-                                 args.pixel_threshold)
-        ok = error is not None and error <= args.threshold
-        failed += not ok
-        print(f"{'ok  ' if ok else 'FAIL'} {name}: {message}")
-        # For CDash, as vtkRegressionTestImage reports it.
-        if error is not None:
-            print(f'<DartMeasurement name="ImageError {name}" type="numeric/double">'
-                  f"{error:.4f}</DartMeasurement>")
-    return 1 if failed else 0
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main("ct_head", NAMES, __doc__.split("\n")[0]))
