@@ -32,10 +32,8 @@ the solve's grid: the pictures use the same extinction per km (a voxel of
 the picture's grid, a third of the size, has a third of the optical depth).
 """
 import argparse
-import json
 import math
 import os
-import sys
 import time
 
 # Factories of the OpenGL render window and of the volume mapper's display
@@ -50,7 +48,6 @@ from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
 from vtkmodules.vtkImagingCore import (
     vtkImageAppendComponents,
     vtkImageChangeInformation,
-    vtkImageReslice,
     vtkImageShiftScale,
     vtkImageShrink3D,
 )
@@ -62,11 +59,11 @@ from vtkmodules.vtkRenderingCore import (
     vtkRenderer,
 )
 
-from volrad import vtkVolumetricRadiosity
 
 # The picture helpers of the CT head example (same folder) and the RGBA
 # volume (see rgba_volume.py for the VTK 9.1 bug it avoids).
 from ct_head import colour_ramp, luminance, with_scalar_bar, write_png
+import lit_grid
 from rgba_volume import rgba_volume
 
 FINE = 60                  # the pictures' grid, FINE^3 voxels
@@ -163,33 +160,8 @@ def solve(coarse, cloud, light, threads):
                     "irradiance": SUN_IRRADIANCE}],
         "solver": {"method": "dense"},
     }
-    radiosity = vtkVolumetricRadiosity()
-    radiosity.SetInputData(coarse)
-    radiosity.SetSceneJSON(json.dumps(scene))
-    radiosity.SetNumberOfThreads(threads)
-    radiosity.Update()
-    lit = radiosity.GetOutput()
-    if lit.GetPointData().GetArray("IncidentRadiation") is None:
-        sys.exit("cloud: the solve failed (see the VTK error above)")
-    fd = lit.GetFieldData()
-    residual = fd.GetArray("EnergyBalanceResidual").GetComponent(0, 0)
-    print(f"solved {lit.GetDimensions()} voxels: {fd.GetAbstractArray('SolverMethod').GetValue(0)}, "
-          f"{fd.GetArray('SolveSeconds').GetValue(0):.1f} s, energy balance residual {residual:.2g}")
-
-    # Bake: G interpolated (trilinear) onto the fine grid; mirror padding
-    # covers the coarse voxel's outer third at the borders.
-    coarse_G = vtkImageData()
-    coarse_G.CopyStructure(lit)
-    coarse_G.GetPointData().SetScalars(lit.GetPointData().GetArray("IncidentRadiation"))
-    bake = vtkImageReslice()
-    bake.SetInputData(coarse_G)
-    bake.SetInformationInput(cloud)
-    bake.SetInterpolationModeToLinear()
-    bake.MirrorOn()
-    bake.Update()
-    G = bake.GetOutput()
-    G.GetPointData().GetScalars().SetName("IncidentRadiation")
-    return G
+    lit = lit_grid.solve(coarse, scene, threads, "cloud")
+    return lit_grid.bake(lit, cloud)
 
 
 def extinction_per_km(coarse):

@@ -34,10 +34,8 @@ the sharp detail of the picture comes from the full-resolution material
 (albedo colour, opacity, isosurface) the baked light is multiplied with.
 """
 import argparse
-import json
 import math
 import os
-import sys
 import time
 
 # Factories of the OpenGL render window and of the volume mapper's display
@@ -45,7 +43,7 @@ import time
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction, vtkPlane
+from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction, vtkPlane
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkCutter, vtkFlyingEdges3D, vtkProbeFilter
 from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
@@ -55,7 +53,6 @@ from vtkmodules.vtkImagingCore import (
     vtkImageCast,
     vtkImageChangeInformation,
     vtkImageMapToColors,
-    vtkImageReslice,
     vtkImageShiftScale,
     vtkImageShrink3D,
 )
@@ -74,9 +71,9 @@ from vtkmodules.vtkRenderingCore import (
     vtkVolumeProperty,
     vtkWindowToImageFilter,
 )
+import lit_grid
 from rgba_volume import rgba_mapper
 
-from volrad import vtkVolumetricRadiosity
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "..", "Data", "headsq", "quarter.nhdr")
@@ -177,34 +174,8 @@ def solve(hu, light, threads):
         "lights": [{"type": "directional", "direction": light, "irradiance": IRRADIANCE}],
         "solver": {"method": "dense"},
     }
-    radiosity = vtkVolumetricRadiosity()
-    radiosity.SetInputConnection(centre.GetOutputPort())
-    radiosity.SetSceneJSON(json.dumps(scene))
-    radiosity.SetNumberOfThreads(threads)
-    radiosity.Update()
-    lit = radiosity.GetOutput()
-    if lit.GetPointData().GetArray("IncidentRadiation") is None:
-        sys.exit("ct_head: the solve failed (see the VTK error above)")
-    fd = lit.GetFieldData()
-    residual = fd.GetArray("EnergyBalanceResidual").GetComponent(0, 0)
-    print(f"solved {lit.GetDimensions()} voxels: {fd.GetAbstractArray('SolverMethod').GetValue(0)}, "
-          f"{fd.GetArray('SolveSeconds').GetValue(0):.1f} s, energy balance residual {residual:.2g}")
-
-    # Bake: interpolate G (trilinear) onto the full-resolution grid. Mirror
-    # padding covers the half coarse voxel at the borders the coarse points
-    # do not reach.
-    coarse = vtkImageData()
-    coarse.CopyStructure(lit)
-    coarse.GetPointData().SetScalars(lit.GetPointData().GetArray("IncidentRadiation"))
-    bake = vtkImageReslice()
-    bake.SetInputData(coarse)
-    bake.SetInformationInput(hu)
-    bake.SetInterpolationModeToLinear()
-    bake.MirrorOn()
-    bake.Update()
-    G = bake.GetOutput()
-    G.GetPointData().GetScalars().SetName("IncidentRadiation")
-    return G
+    lit = lit_grid.solve(centre, scene, threads, "ct_head")
+    return lit_grid.bake(lit, hu)
 
 
 def luminance(G):

@@ -49,10 +49,8 @@ bones) come out patchy: the coarse light carries the large-scale shadows of
 the organs, the full detail comes from the labels it multiplies.
 """
 import argparse
-import json
 import math
 import os
-import sys
 import time
 
 # Factories of the OpenGL render window and of the volume mapper's display
@@ -60,7 +58,7 @@ import time
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
 from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPlane
+from vtkmodules.vtkCommonDataModel import vtkPlane
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkCutter
 from vtkmodules.vtkFiltersGeneral import vtkDiscreteFlyingEdges3D, vtkTransformPolyDataFilter
@@ -82,11 +80,11 @@ from vtkmodules.vtkRenderingCore import (
     vtkRenderer,
 )
 
-from volrad import vtkVolumetricRadiosity
 
 # The picture helpers of the CT head example (same folder): the window grab,
 # the colour ramps and the scalar bar.
 from ct_head import colour_ramp, luminance, with_scalar_bar, write_png
+import lit_grid
 from rgba_volume import rgba_volume
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -193,33 +191,8 @@ def solve(coarse, fine, light, threads):
                     "irradiance": IRRADIANCE}],
         "solver": {"method": "dense"},
     }
-    radiosity = vtkVolumetricRadiosity()
-    radiosity.SetInputData(coarse)
-    radiosity.SetSceneJSON(json.dumps(scene))
-    radiosity.SetNumberOfThreads(threads)
-    radiosity.Update()
-    lit = radiosity.GetOutput()
-    if lit.GetPointData().GetArray("IncidentRadiation") is None:
-        sys.exit("frog_labels: the solve failed (see the VTK error above)")
-    fd = lit.GetFieldData()
-    residual = fd.GetArray("EnergyBalanceResidual").GetComponent(0, 0)
-    print(f"solved {lit.GetDimensions()} voxels: {fd.GetAbstractArray('SolverMethod').GetValue(0)}, "
-          f"{fd.GetArray('SolveSeconds').GetValue(0):.1f} s, energy balance residual {residual:.2g}")
-
-    # Bake: G interpolated (trilinear) onto the pictures' grid; mirror
-    # padding covers the half coarse voxel at the borders.
-    coarse_G = vtkImageData()
-    coarse_G.CopyStructure(lit)
-    coarse_G.GetPointData().SetScalars(lit.GetPointData().GetArray("IncidentRadiation"))
-    bake = vtkImageReslice()
-    bake.SetInputData(coarse_G)
-    bake.SetInformationInput(fine)
-    bake.SetInterpolationModeToLinear()
-    bake.MirrorOn()
-    bake.Update()
-    G = bake.GetOutput()
-    G.GetPointData().GetScalars().SetName("IncidentRadiation")
-    return G
+    lit = lit_grid.solve(coarse, scene, threads, "frog_labels")
+    return lit_grid.bake(lit, fine)
 
 
 def tissue_lookup():
