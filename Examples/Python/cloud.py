@@ -31,7 +31,6 @@ pictures their detail, as in ct_head.py. The material is the preset's on
 the solve's grid: the pictures use the same extinction per km (a voxel of
 the picture's grid, a third of the size, has a third of the optical depth).
 """
-import argparse
 import math
 import os
 import time
@@ -40,30 +39,15 @@ import time
 # helper (without them, vtkRenderWindow() is an abstract object).
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
-from vtkmodules.vtkCommonCore import VTK_FLOAT, vtkDoubleArray, vtkFloatArray
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPlane
-from vtkmodules.vtkCommonTransforms import vtkTransform
-from vtkmodules.vtkFiltersCore import vtkCutter, vtkFlyingEdges3D
-from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
-from vtkmodules.vtkImagingCore import (
-    vtkImageAppendComponents,
-    vtkImageChangeInformation,
-    vtkImageShiftScale,
-    vtkImageShrink3D,
-)
-from vtkmodules.vtkRenderingCore import (
-    vtkActor,
-    vtkImageSlice,
-    vtkImageSliceMapper,
-    vtkPolyDataMapper,
-    vtkRenderer,
-)
+from vtkmodules.vtkCommonCore import VTK_FLOAT, vtkFloatArray
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkImagingCore import vtkImageShiftScale
+from vtkmodules.vtkRenderingCore import vtkRenderer
 
-
-# The picture helpers of the CT head example (same folder) and the RGBA
-# volume (see rgba_volume.py for the VTK 9.1 bug it avoids).
-from ct_head import colour_ramp, luminance, with_scalar_bar, write_png
+# The picture helpers (same folder, shared with ct_head.py and frog_labels.py)
+# and the RGBA volume (see rgba_volume.py for the VTK 9.1 bug it avoids).
 import lit_grid
+import pictures
 from rgba_volume import rgba_volume
 
 FINE = 60                  # the pictures' grid, FINE^3 voxels
@@ -85,14 +69,8 @@ SLICE_RANGE = (0.05, 2.5)  # G on the slice, log scale
 
 
 def parse_args():
-    parser = argparse.ArgumentParser(description="Light a procedural cloud and render two PNGs.")
-    parser.add_argument("outdir", nargs="?", default="out", help="folder for the PNGs (default out/)")
-    parser.add_argument("--size", nargs=2, type=int, default=[400, 400], metavar=("W", "H"),
-                        help="image size in pixels (default 400 400)")
-    parser.add_argument("--light", nargs=3, type=float, default=LIGHT_DIRECTION,
-                        metavar=("DX", "DY", "DZ"), help="direction the sunlight travels")
-    parser.add_argument("--threads", type=int, default=0, help="solver threads (0: all cores)")
-    return parser.parse_args()
+    return pictures.parse_args("Light a procedural cloud and render two PNGs.", LIGHT_DIRECTION,
+                         "direction the sunlight travels")
 
 
 def cloud_density(u, v, w):
@@ -133,19 +111,7 @@ def make_cloud():
 
 def coarse_grid(cloud):
     """The density averaged over SHRINK^3 voxels, placed at their centres."""
-    shrink = vtkImageShrink3D()
-    shrink.SetInputData(cloud)
-    shrink.SetShrinkFactors(SHRINK, SHRINK, SHRINK)
-    shrink.AveragingOn()
-    # vtkImageShrink3D keeps the origin, but the mean of fine voxels
-    # 3i..3i+2 belongs at their centre, one fine voxel further.
-    centre = vtkImageChangeInformation()
-    centre.SetInputConnection(shrink.GetOutputPort())
-    centre.SetOriginTranslation([(SHRINK - 1) / 2.0 * s for s in cloud.GetSpacing()])
-    centre.Update()
-    coarse = centre.GetOutput()
-    coarse.GetPointData().GetScalars().SetName("density")
-    return coarse
+    return pictures.named_output(lit_grid.average(cloud, SHRINK), "density")
 
 
 def solve(coarse, cloud, light, threads):
@@ -195,11 +161,7 @@ def render_ready_rgba(cloud, G, kappa_per_density):
     alpha_byte.SetOutputScalarTypeToUnsignedChar()
     alpha_byte.ClampOverflowOn()
 
-    rgba = vtkImageAppendComponents()
-    rgba.AddInputConnection(rgb.GetOutputPort())
-    rgba.AddInputConnection(alpha_byte.GetOutputPort())
-    rgba.Update()
-    return rgba.GetOutput()
+    return pictures.append_rgba(rgb, alpha_byte)
 
 
 def volume_picture(cloud, G, kappa_per_density, size, path):
@@ -214,17 +176,8 @@ def volume_picture(cloud, G, kappa_per_density, size, path):
     renderer.SetBackground(0.45, 0.6, 0.8)     # bottom
     renderer.SetBackground2(0.1, 0.25, 0.55)   # top
     renderer.AddVolume(volume)
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    fp = camera.GetFocalPoint()
-    camera.SetPosition(fp[0], fp[1] - camera.GetDistance(), fp[2])
-    camera.SetViewUp(0, 0, 1)
-    camera.Azimuth(20.0)
-    camera.Elevation(-10.0)
-    camera.OrthogonalizeViewUp()
-    renderer.ResetCamera()
-    camera.Zoom(1.5)
-    write_png([renderer], size, path)
+    pictures.orbit_camera(renderer, 1, -1.0, (0, 0, 1), azimuth=20.0, elevation=-10.0, zoom=1.5)
+    pictures.write_png([renderer], size, path)
 
 
 def slice_picture(cloud, G_lum, size, path):
@@ -233,70 +186,18 @@ def slice_picture(cloud, G_lum, size, path):
     the cloud's outline."""
     j = FINE // 2
     y = cloud.GetOrigin()[1] + j * cloud.GetSpacing()[1]
-    lut = colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.25, 0.26, 0.04, 0.41), (0.5, 0.73, 0.21, 0.33),
-                       (0.75, 0.98, 0.55, 0.04), (1.0, 0.99, 1.0, 0.64)),
-                      SLICE_RANGE, log=True)
-    mapper = vtkImageSliceMapper()
-    mapper.SetInputData(G_lum)
-    mapper.SetOrientationToY()
-    mapper.SetSliceNumber(j)
-    image = vtkImageSlice()
-    image.SetMapper(mapper)
-    image.GetProperty().SetLookupTable(lut)
-    image.GetProperty().UseLookupTableScalarRangeOn()
-    image.GetProperty().SetInterpolationTypeToLinear()
-
-    background = (0.1, 0.1, 0.12)
-    renderer = vtkRenderer()
-    renderer.SetBackground(*background)
-    renderer.AddViewProp(image)
+    renderer, lut = pictures.slice_scene(G_lum, 1, j, SLICE_RANGE)
     # The outline: the density isosurface cut by the slice plane, moved 10 m
     # towards the camera (at -y) so that it is drawn over the image.
-    surface = vtkFlyingEdges3D()
-    surface.SetInputData(cloud)
-    surface.SetValue(0, OUTLINE * cloud.GetScalarRange()[1])
-    surface.ComputeNormalsOff()
-    plane = vtkPlane()
-    plane.SetOrigin(0.0, y, 0.0)
-    plane.SetNormal(0.0, 1.0, 0.0)
-    cut = vtkCutter()
-    cut.SetInputConnection(surface.GetOutputPort())
-    cut.SetCutFunction(plane)
-    toward_camera = vtkTransform()
-    toward_camera.Translate(0.0, -0.01, 0.0)
-    move = vtkTransformPolyDataFilter()
-    move.SetInputConnection(cut.GetOutputPort())
-    move.SetTransform(toward_camera)
-    line_mapper = vtkPolyDataMapper()
-    line_mapper.SetInputConnection(move.GetOutputPort())
-    line_mapper.ScalarVisibilityOff()
-    lines = vtkActor()
-    lines.SetMapper(line_mapper)
-    lines.GetProperty().SetColor(0.55, 0.8, 1.0)
-    lines.GetProperty().SetLineWidth(1.0)
-    lines.GetProperty().LightingOff()
-    renderer.AddActor(lines)
-
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    fp = camera.GetFocalPoint()
-    camera.SetFocalPoint(fp[0], y, fp[2])
-    camera.SetPosition(fp[0], y - camera.GetDistance(), fp[2])
-    camera.SetViewUp(0, 0, 1)
-    camera.ParallelProjectionOn()
-    renderer.ResetCamera()
-    # The whole slice in the scene's viewport (80% of the width).
-    aspect = 0.8 * size[0] / size[1]
-    camera.SetParallelScale(0.51 * max(SIZE_KM, SIZE_KM / aspect))
-    labels = vtkDoubleArray()
-    for v in (0.1, 1.0):
-        labels.InsertNextValue(v)
-    write_png(with_scalar_bar(renderer, lut, "G (W/m2)", background, labels), size, path)
+    surface = pictures.isosurface(cloud, OUTLINE * cloud.GetScalarRange()[1])
+    renderer.AddActor(pictures.outline(surface, 1, y, -0.01))
+    # The whole slice in the scene's viewport.
+    pictures.slice_camera(renderer, 1, -1.0, (0, 0, 1), SIZE_KM, SIZE_KM, size, at=y)
+    pictures.write_slice_png(renderer, lut, (0.1, 1.0), size, path)
 
 
 def main():
     args = parse_args()
-    os.makedirs(args.outdir, exist_ok=True)
     start = time.time()
     cloud = make_cloud()
     coarse = coarse_grid(cloud)
@@ -304,9 +205,7 @@ def main():
     print(f"cloud: {cloud.GetDimensions()} voxels of {cloud.GetSpacing()[0] * 1000:.0f} m, solved on "
           f"{coarse.GetDimensions()}; extinction {kappa:.2f}/km at density 1, albedo {ALBEDO}")
     G = solve(coarse, cloud, args.light, args.threads)
-    G_lum = luminance(G)
-    print(f"baked G onto {G.GetDimensions()}: {G_lum.GetScalarRange()[0]:.3f} .. "
-          f"{G_lum.GetScalarRange()[1]:.3f} W/m^2 ({time.time() - start:.1f} s)")
+    G_lum = pictures.baked_luminance(G, start)
     volume_picture(cloud, G, kappa, args.size, os.path.join(args.outdir, "cloud_volume.png"))
     slice_picture(cloud, G_lum, args.size, os.path.join(args.outdir, "cloud_slice.png"))
     print(f"done in {time.time() - start:.1f} s")

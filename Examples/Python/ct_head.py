@@ -33,7 +33,6 @@ and the soft shadows of a translucent medium vary over many voxels, while
 the sharp detail of the picture comes from the full-resolution material
 (albedo colour, opacity, isosurface) the baked light is multiplied with.
 """
-import argparse
 import math
 import os
 import time
@@ -42,36 +41,24 @@ import time
 # helper (without them, vtkRenderWindow() is an abstract object).
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction, vtkPlane
-from vtkmodules.vtkCommonTransforms import vtkTransform
-from vtkmodules.vtkFiltersCore import vtkCutter, vtkFlyingEdges3D, vtkProbeFilter
-from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
-from vtkmodules.vtkImagingColor import vtkImageLuminance
-from vtkmodules.vtkImagingCore import (
-    vtkImageAppendComponents,
-    vtkImageCast,
-    vtkImageChangeInformation,
-    vtkImageMapToColors,
-    vtkImageShiftScale,
-    vtkImageShrink3D,
-)
-from vtkmodules.vtkImagingMath import vtkImageMathematics
-from vtkmodules.vtkIOImage import vtkNrrdReader, vtkPNGWriter
-from vtkmodules.vtkRenderingAnnotation import vtkScalarBarActor
+from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+from vtkmodules.vtkFiltersCore import vtkProbeFilter
+from vtkmodules.vtkImagingCore import vtkImageMapToColors, vtkImageShiftScale
+from vtkmodules.vtkIOImage import vtkNrrdReader
 from vtkmodules.vtkRenderingCore import (
     vtkActor,
     vtkColorTransferFunction,
-    vtkImageSlice,
-    vtkImageSliceMapper,
     vtkPolyDataMapper,
     vtkRenderer,
-    vtkRenderWindow,
     vtkVolume,
     vtkVolumeProperty,
-    vtkWindowToImageFilter,
 )
 import lit_grid
+# The picture helpers (same folder), shared with frog_labels.py and cloud.py;
+# colour_ramp, luminance, with_scalar_bar and write_png, once defined here,
+# stay importable from here.
+import pictures
+from pictures import colour_ramp, luminance, with_scalar_bar, write_png  # noqa: F401
 from rgba_volume import rgba_mapper
 
 
@@ -124,14 +111,7 @@ def interpolate(points, s, index=1):
 
 
 def parse_args():
-    parser = argparse.ArgumentParser(description="Light the CT head and render three PNGs.")
-    parser.add_argument("outdir", nargs="?", default="out", help="folder for the PNGs (default out/)")
-    parser.add_argument("--size", nargs=2, type=int, default=[400, 400], metavar=("W", "H"),
-                        help="image size in pixels (default 400 400)")
-    parser.add_argument("--light", nargs=3, type=float, default=LIGHT_DIRECTION,
-                        metavar=("DX", "DY", "DZ"), help="direction the light travels")
-    parser.add_argument("--threads", type=int, default=0, help="solver threads (0: all cores)")
-    return parser.parse_args()
+    return pictures.parse_args("Light the CT head and render three PNGs.", LIGHT_DIRECTION)
 
 
 def read_head():
@@ -143,23 +123,13 @@ def read_head():
     to_hu.SetShift(HU_OFFSET)
     to_hu.SetScale(1.0)
     to_hu.SetOutputScalarTypeToFloat()
-    to_hu.Update()
-    hu = to_hu.GetOutput()
-    hu.GetPointData().GetScalars().SetName("HU")
-    return hu
+    return pictures.named_output(to_hu, "HU")
 
 
 def solve(hu, light, threads):
     """Lights the coarse grid; returns G (3 components) baked onto the full grid."""
-    # Average 4x4x4 voxels. vtkImageShrink3D keeps the origin, but the mean of
-    # fine voxels 4i..4i+3 belongs at their centre, 1.5 fine voxels further.
-    shrink = vtkImageShrink3D()
-    shrink.SetInputData(hu)
-    shrink.SetShrinkFactors(SHRINK, SHRINK, SHRINK)
-    shrink.AveragingOn()
-    centre = vtkImageChangeInformation()
-    centre.SetInputConnection(shrink.GetOutputPort())
-    centre.SetOriginTranslation([(SHRINK - 1) / 2.0 * s for s in hu.GetSpacing()])
+    # Average 4x4x4 voxels, each mean at the centre of its voxels.
+    centre = lit_grid.average(hu, SHRINK)
 
     scene = {
         "version": 1,
@@ -178,16 +148,6 @@ def solve(hu, light, threads):
     return lit_grid.bake(lit, hu)
 
 
-def luminance(G):
-    """One component of G for colour maps: 0.30 R + 0.59 G + 0.11 B (vtkImageLuminance)."""
-    lum = vtkImageLuminance()
-    lum.SetInputData(G)
-    lum.Update()
-    out = lum.GetOutput()
-    out.GetPointData().GetScalars().SetName("G")
-    return out
-
-
 def render_ready_rgba(hu, G):
     """RGBA unsigned char: RGB = 255 albedo colour x G / G_WHITE, A = (HU + 1024) / 16."""
     # Albedo colour a_c(s) = albedo(s) colour_c(s), sampled every 10 HU.
@@ -199,25 +159,10 @@ def render_ready_rgba(hu, G):
     albedo_rgb.SetInputData(hu)
     albedo_rgb.SetLookupTable(albedo_color)
     albedo_rgb.SetOutputFormatToRGB()
-    albedo_float = vtkImageCast()
-    albedo_float.SetInputConnection(albedo_rgb.GetOutputPort())
-    albedo_float.SetOutputScalarTypeToFloat()
 
     # Display exposure: G_WHITE shows at full brightness, linearly (no tone
     # curve), so that the shadowed side reads as shadow.
-    exposure = vtkImageMathematics()
-    exposure.SetInputData(G)
-    exposure.SetOperationToMultiplyByK()
-    exposure.SetConstantK(1.0 / G_WHITE)
-
-    product = vtkImageMathematics()   # component by component
-    product.SetOperationToMultiply()
-    product.SetInputConnection(0, albedo_float.GetOutputPort())
-    product.SetInputConnection(1, exposure.GetOutputPort())
-    rgb = vtkImageShiftScale()        # albedo_rgb is 0-255 already
-    rgb.SetInputConnection(product.GetOutputPort())
-    rgb.SetOutputScalarTypeToUnsignedChar()
-    rgb.ClampOverflowOn()
+    rgb = pictures.lit_colour(albedo_rgb, G, G_WHITE)
 
     # Alpha: HU in 16-HU steps (-1024 -> 0, 3056 -> 255), looked up by the
     # scalar opacity function below.
@@ -228,87 +173,13 @@ def render_ready_rgba(hu, G):
     alpha.SetOutputScalarTypeToUnsignedChar()
     alpha.ClampOverflowOn()
 
-    rgba = vtkImageAppendComponents()
-    rgba.AddInputConnection(rgb.GetOutputPort())
-    rgba.AddInputConnection(alpha.GetOutputPort())
-    rgba.Update()
-    return rgba.GetOutput()
+    return pictures.append_rgba(rgb, alpha)
 
 
 def head_camera(renderer, azimuth=-20.0, elevation=-10.0, zoom=1.3):
     """A view of the face (which looks towards +y; -z is up), turned by azimuth
     and elevation (degrees)."""
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    fp = camera.GetFocalPoint()
-    d = camera.GetDistance()
-    camera.SetPosition(fp[0], fp[1] + d, fp[2])
-    camera.SetViewUp(0, 0, -1)
-    camera.Azimuth(azimuth)
-    camera.Elevation(elevation)
-    camera.OrthogonalizeViewUp()
-    renderer.ResetCamera()
-    camera.Zoom(zoom)
-
-
-def write_png(renderers, size, path):
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(*size)
-    window.SetMultiSamples(0)  # the same pixels on every run
-    for renderer in renderers:
-        window.AddRenderer(renderer)
-    window.Render()
-    grab = vtkWindowToImageFilter()
-    grab.SetInput(window)
-    grab.ReadFrontBufferOff()
-    writer = vtkPNGWriter()
-    writer.SetInputConnection(grab.GetOutputPort())
-    writer.SetFileName(path)
-    writer.Write()
-    window.Finalize()
-    print(f"wrote {path}")
-
-
-def colour_ramp(points, table_range, log=False):
-    """A 256-entry lookup table interpolating (x in [0, 1], r, g, b) points."""
-    ramp = vtkColorTransferFunction()
-    for x, r, g, b in points:
-        ramp.AddRGBPoint(x, r, g, b)
-    lut = vtkLookupTable()
-    lut.SetNumberOfTableValues(256)
-    for i in range(256):
-        lut.SetTableValue(i, *ramp.GetColor(i / 255.0), 1.0)
-    if log:
-        lut.SetScaleToLog10()
-    lut.SetTableRange(*table_range)
-    lut.Build()
-    return lut
-
-
-def with_scalar_bar(scene, lut, title, background, labels=None):
-    """The scene on the left 80% of the window, a scalar bar on the right."""
-    scene.SetViewport(0.0, 0.0, 0.8, 1.0)
-    bar = vtkScalarBarActor()
-    bar.SetLookupTable(lut)
-    bar.SetTitle(title)
-    bar.SetNumberOfLabels(5)
-    bar.SetLabelFormat("%.3g")
-    bar.SetPosition(0.05, 0.08)
-    bar.SetWidth(0.9)
-    bar.SetHeight(0.84)
-    bar.SetBarRatio(0.3)
-    if labels is not None:
-        bar.SetUseCustomLabels(True)
-        bar.SetCustomLabels(labels)
-    bar.UnconstrainedFontSizeOn()
-    bar.GetTitleTextProperty().SetFontSize(13)
-    bar.GetLabelTextProperty().SetFontSize(12)
-    side = vtkRenderer()
-    side.SetViewport(0.8, 0.0, 1.0, 1.0)
-    side.SetBackground(*background)
-    side.AddActor2D(bar)
-    return [scene, side]
+    pictures.orbit_camera(renderer, 1, 1.0, (0, 0, -1), azimuth, elevation, zoom)
 
 
 def volume_picture(hu, G, size, path):
@@ -347,16 +218,13 @@ def volume_picture(hu, G, size, path):
     renderer.SetBackground(0.0, 0.0, 0.0)
     renderer.AddVolume(volume)
     head_camera(renderer)
-    write_png([renderer], size, path)
+    pictures.write_png([renderer], size, path)
 
 
 def bone_picture(hu, G_lum, size, path):
     """(b) The bone isosurface, its colour the baked G at each point (the
     actor is unlit: ambient 1, diffuse 0, so the colour is the radiosity)."""
-    bone = vtkFlyingEdges3D()
-    bone.SetInputData(hu)
-    bone.SetValue(0, BONE_HU)
-    bone.ComputeNormalsOff()
+    bone = pictures.isosurface(hu, BONE_HU)
     probe = vtkProbeFilter()
     probe.SetInputConnection(bone.GetOutputPort())
     probe.SetSourceData(G_lum)
@@ -365,7 +233,7 @@ def bone_picture(hu, G_lum, size, path):
     print(f"bone surface at {BONE_HU:g} HU: {probe.GetOutput().GetNumberOfPoints()} points, "
           f"G {lo:.3f} .. {hi:.3f} W/m^2")
     # "bone" colours: black, blue-grey, white.
-    lut = colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.375, 0.32, 0.32, 0.44),
+    lut = pictures.colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.375, 0.32, 0.32, 0.44),
                        (0.75, 0.65, 0.78, 0.78), (1.0, 1.0, 1.0, 1.0)), (0.0, G_WHITE))
     mapper = vtkPolyDataMapper()
     mapper.SetInputConnection(probe.GetOutputPort())
@@ -379,12 +247,12 @@ def bone_picture(hu, G_lum, size, path):
     actor.GetProperty().SetAmbient(1.0)
     actor.GetProperty().SetDiffuse(0.0)
     actor.GetProperty().SetSpecular(0.0)
-    background = (0.1, 0.1, 0.12)
     renderer = vtkRenderer()
-    renderer.SetBackground(*background)
+    renderer.SetBackground(*pictures.BACKGROUND)
     renderer.AddActor(actor)
     head_camera(renderer)
-    write_png(with_scalar_bar(renderer, lut, "G (W/m2)", background), size, path)
+    pictures.write_png(pictures.with_scalar_bar(renderer, lut, "G (W/m2)", pictures.BACKGROUND),
+                       size, path)
 
 
 def slice_picture(hu, G_lum, size, path):
@@ -394,79 +262,25 @@ def slice_picture(hu, G_lum, size, path):
     the light comes from, on the left)."""
     k = SLICE_K
     z = hu.GetOrigin()[2] + k * hu.GetSpacing()[2]
-    # inferno-like: black, purple, orange, pale yellow.
-    lut = colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.25, 0.26, 0.04, 0.41), (0.5, 0.73, 0.21, 0.33),
-                       (0.75, 0.98, 0.55, 0.04), (1.0, 0.99, 1.0, 0.64)),
-                      SLICE_RANGE, log=True)
-    mapper = vtkImageSliceMapper()
-    mapper.SetInputData(G_lum)
-    mapper.SetOrientationToZ()
-    mapper.SetSliceNumber(k)
-    image = vtkImageSlice()
-    image.SetMapper(mapper)
-    image.GetProperty().SetLookupTable(lut)
-    image.GetProperty().UseLookupTableScalarRangeOn()
-    image.GetProperty().SetInterpolationTypeToLinear()
-
-    background = (0.1, 0.1, 0.12)
-    renderer = vtkRenderer()
-    renderer.SetBackground(*background)
-    renderer.AddViewProp(image)
+    renderer, lut = pictures.slice_scene(G_lum, 2, k, SLICE_RANGE)
     # Outlines: the skin and bone isosurfaces cut by the slice plane, moved
     # 1 mm towards the camera (at +z) so that they are drawn over the image.
-    plane = vtkPlane()
-    plane.SetOrigin(0.0, 0.0, z)
-    plane.SetNormal(0.0, 0.0, 1.0)
-    toward_camera = vtkTransform()
-    toward_camera.Translate(0.0, 0.0, 1.0)
     for level, color in ((SKIN_HU, (0.55, 0.8, 1.0)), (BONE_HU, (1.0, 1.0, 1.0))):
-        surface = vtkFlyingEdges3D()
-        surface.SetInputData(hu)
-        surface.SetValue(0, level)
-        surface.ComputeNormalsOff()
-        cut = vtkCutter()
-        cut.SetInputConnection(surface.GetOutputPort())
-        cut.SetCutFunction(plane)
-        move = vtkTransformPolyDataFilter()
-        move.SetInputConnection(cut.GetOutputPort())
-        move.SetTransform(toward_camera)
-        line_mapper = vtkPolyDataMapper()
-        line_mapper.SetInputConnection(move.GetOutputPort())
-        line_mapper.ScalarVisibilityOff()
-        lines = vtkActor()
-        lines.SetMapper(line_mapper)
-        lines.GetProperty().SetColor(*color)
-        lines.GetProperty().SetLineWidth(1.0)
-        lines.GetProperty().LightingOff()
-        renderer.AddActor(lines)
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    fp = camera.GetFocalPoint()
-    camera.SetPosition(fp[0], fp[1], fp[2] + camera.GetDistance())
-    camera.SetViewUp(0, 1, 0)
-    camera.ParallelProjectionOn()
-    renderer.ResetCamera()
-    # The whole slice in the scene's viewport (80% of the width).
+        renderer.AddActor(pictures.outline(pictures.isosurface(hu, level), 2, z, 1.0, color))
+    # The whole slice in the scene's viewport.
     bounds = hu.GetBounds()
-    aspect = 0.8 * size[0] / size[1]
-    camera.SetParallelScale(0.51 * max(bounds[3] - bounds[2], (bounds[1] - bounds[0]) / aspect))
-    labels = vtkDoubleArray()
-    for v in (0.001, 0.01, 0.1, 1.0):
-        labels.InsertNextValue(v)
-    write_png(with_scalar_bar(renderer, lut, "G (W/m2)", background, labels), size, path)
+    pictures.slice_camera(renderer, 2, 1.0, (0, 1, 0), bounds[3] - bounds[2], bounds[1] - bounds[0],
+                          size)
+    pictures.write_slice_png(renderer, lut, (0.001, 0.01, 0.1, 1.0), size, path)
 
 
 def main():
     args = parse_args()
-    os.makedirs(args.outdir, exist_ok=True)
     start = time.time()
     hu = read_head()
-    print(f"read {DATA}: {hu.GetDimensions()} voxels, spacing {hu.GetSpacing()} mm, "
-          f"HU {hu.GetScalarRange()[0]:.0f} .. {hu.GetScalarRange()[1]:.0f}")
+    pictures.print_read(DATA, hu, "HU")
     G = solve(hu, args.light, args.threads)
-    G_lum = luminance(G)
-    print(f"baked G onto {G.GetDimensions()}: {G_lum.GetScalarRange()[0]:.3f} .. "
-          f"{G_lum.GetScalarRange()[1]:.3f} W/m^2 ({time.time() - start:.1f} s)")
+    G_lum = pictures.baked_luminance(G, start)
     volume_picture(hu, G, args.size, os.path.join(args.outdir, "ct_head_volume.png"))
     bone_picture(hu, G_lum, args.size, os.path.join(args.outdir, "ct_head_bone.png"))
     slice_picture(hu, G_lum, args.size, os.path.join(args.outdir, "ct_head_slice.png"))

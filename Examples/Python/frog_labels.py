@@ -48,7 +48,6 @@ fraction on average, while thin structures (vessels, nerves, the finer
 bones) come out patchy: the coarse light carries the large-scale shadows of
 the organs, the full detail comes from the labels it multiplies.
 """
-import argparse
 import math
 import os
 import time
@@ -57,34 +56,20 @@ import time
 # helper (without them, vtkRenderWindow() is an abstract object).
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkPlane
-from vtkmodules.vtkCommonTransforms import vtkTransform
-from vtkmodules.vtkFiltersCore import vtkCutter
-from vtkmodules.vtkFiltersGeneral import vtkDiscreteFlyingEdges3D, vtkTransformPolyDataFilter
+from vtkmodules.vtkCommonCore import vtkLookupTable
+from vtkmodules.vtkFiltersGeneral import vtkDiscreteFlyingEdges3D
 from vtkmodules.vtkImagingCore import (
-    vtkImageAppendComponents,
-    vtkImageCast,
     vtkImageExtractComponents,
     vtkImageMapToColors,
     vtkImageReslice,
-    vtkImageShiftScale,
 )
-from vtkmodules.vtkImagingMath import vtkImageMathematics
 from vtkmodules.vtkIOImage import vtkMetaImageReader
-from vtkmodules.vtkRenderingCore import (
-    vtkActor,
-    vtkImageSlice,
-    vtkImageSliceMapper,
-    vtkPolyDataMapper,
-    vtkRenderer,
-)
+from vtkmodules.vtkRenderingCore import vtkRenderer
 
-
-# The picture helpers of the CT head example (same folder): the window grab,
-# the colour ramps and the scalar bar.
-from ct_head import colour_ramp, luminance, with_scalar_bar, write_png
+# The picture helpers (same folder, shared with ct_head.py and cloud.py) and
+# the RGBA volume (see rgba_volume.py for the VTK 9.1 bug it avoids).
 import lit_grid
+import pictures
 from rgba_volume import rgba_volume
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -136,23 +121,14 @@ SLICE_RANGE = (1e-2, 1.5)  # G on the slice, log scale
 
 
 def parse_args():
-    parser = argparse.ArgumentParser(description="Light the frog's tissue labels and render two PNGs.")
-    parser.add_argument("outdir", nargs="?", default="out", help="folder for the PNGs (default out/)")
-    parser.add_argument("--size", nargs=2, type=int, default=[400, 400], metavar=("W", "H"),
-                        help="image size in pixels (default 400 400)")
-    parser.add_argument("--light", nargs=3, type=float, default=LIGHT_DIRECTION,
-                        metavar=("DX", "DY", "DZ"), help="direction the light travels")
-    parser.add_argument("--threads", type=int, default=0, help="solver threads (0: all cores)")
-    return parser.parse_args()
+    return pictures.parse_args("Light the frog's tissue labels and render two PNGs.",
+                               LIGHT_DIRECTION)
 
 
 def read_labels():
     reader = vtkMetaImageReader()
     reader.SetFileName(DATA)
-    reader.Update()
-    labels = reader.GetOutput()
-    labels.GetPointData().GetScalars().SetName("Tissue")
-    return labels
+    return pictures.named_output(reader, "Tissue")
 
 
 def sample(labels, step, count):
@@ -168,10 +144,7 @@ def sample(labels, step, count):
                              for a in range(3)])
     reslice.SetOutputExtent(0, count[0] - 1, 0, count[1] - 1, 0, count[2] - 1)
     reslice.SetInterpolationModeToNearestNeighbor()
-    reslice.Update()
-    out = reslice.GetOutput()
-    out.GetPointData().GetScalars().SetName("Tissue")
-    return out
+    return pictures.named_output(reslice, "Tissue")
 
 
 def label_table():
@@ -221,32 +194,13 @@ def render_ready_rgba(fine, G):
     albedo_rgb = vtkImageExtractComponents()
     albedo_rgb.SetInputConnection(rgba_table.GetOutputPort())
     albedo_rgb.SetComponents(0, 1, 2)
-    albedo_float = vtkImageCast()
-    albedo_float.SetInputConnection(albedo_rgb.GetOutputPort())
-    albedo_float.SetOutputScalarTypeToFloat()
-
-    exposure = vtkImageMathematics()
-    exposure.SetInputData(G)
-    exposure.SetOperationToMultiplyByK()
-    exposure.SetConstantK(1.0 / G_WHITE)
-    product = vtkImageMathematics()   # component by component
-    product.SetOperationToMultiply()
-    product.SetInputConnection(0, albedo_float.GetOutputPort())
-    product.SetInputConnection(1, exposure.GetOutputPort())
-    rgb = vtkImageShiftScale()        # albedo_rgb is 0-255 already
-    rgb.SetInputConnection(product.GetOutputPort())
-    rgb.SetOutputScalarTypeToUnsignedChar()
-    rgb.ClampOverflowOn()
+    rgb = pictures.lit_colour(albedo_rgb, G, G_WHITE)
 
     alpha = vtkImageExtractComponents()
     alpha.SetInputConnection(rgba_table.GetOutputPort())
     alpha.SetComponents(3)
 
-    rgba = vtkImageAppendComponents()
-    rgba.AddInputConnection(rgb.GetOutputPort())
-    rgba.AddInputConnection(alpha.GetOutputPort())
-    rgba.Update()
-    return rgba.GetOutput()
+    return pictures.append_rgba(rgb, alpha)
 
 
 def volume_picture(fine, G, size, path):
@@ -261,16 +215,8 @@ def volume_picture(fine, G, size, path):
     renderer.AddVolume(volume)
     # From above (the back, -z), the head (+x) towards the top of the
     # picture, turned down towards the frog's -y side.
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    fp = camera.GetFocalPoint()
-    camera.SetPosition(fp[0], fp[1], fp[2] - camera.GetDistance())
-    camera.SetViewUp(1, 0, 0)
-    camera.Azimuth(VIEW_TILT)
-    camera.OrthogonalizeViewUp()
-    renderer.ResetCamera()
-    camera.Zoom(1.3)
-    write_png([renderer], size, path)
+    pictures.orbit_camera(renderer, 2, -1.0, (1, 0, 0), azimuth=VIEW_TILT, zoom=1.3)
+    pictures.write_png([renderer], size, path)
 
 
 def slice_picture(fine, G_lum, size, path):
@@ -280,23 +226,7 @@ def slice_picture(fine, G_lum, size, path):
     spacing, origin = fine.GetSpacing(), fine.GetOrigin()
     i = int(round((SLICE_X - origin[0]) / spacing[0]))
     x = origin[0] + i * spacing[0]
-    lut = colour_ramp(((0.0, 0.0, 0.0, 0.02), (0.25, 0.26, 0.04, 0.41), (0.5, 0.73, 0.21, 0.33),
-                       (0.75, 0.98, 0.55, 0.04), (1.0, 0.99, 1.0, 0.64)),
-                      SLICE_RANGE, log=True)
-    mapper = vtkImageSliceMapper()
-    mapper.SetInputData(G_lum)
-    mapper.SetOrientationToX()
-    mapper.SetSliceNumber(i)
-    image = vtkImageSlice()
-    image.SetMapper(mapper)
-    image.GetProperty().SetLookupTable(lut)
-    image.GetProperty().UseLookupTableScalarRangeOn()
-    image.GetProperty().SetInterpolationTypeToLinear()
-
-    background = (0.1, 0.1, 0.12)
-    renderer = vtkRenderer()
-    renderer.SetBackground(*background)
-    renderer.AddViewProp(image)
+    renderer, lut = pictures.slice_scene(G_lum, 0, i, SLICE_RANGE)
     # Outlines: the boundaries between tissues (the labels' surfaces, cut by
     # the slice plane), moved 1 mm towards the camera (at -x) so that they
     # are drawn over the image.
@@ -305,58 +235,23 @@ def slice_picture(fine, G_lum, size, path):
     surfaces.GenerateValues(MAX_LABEL, 1, MAX_LABEL)
     surfaces.ComputeNormalsOff()
     surfaces.ComputeScalarsOff()
-    plane = vtkPlane()
-    plane.SetOrigin(x, 0.0, 0.0)
-    plane.SetNormal(1.0, 0.0, 0.0)
-    cut = vtkCutter()
-    cut.SetInputConnection(surfaces.GetOutputPort())
-    cut.SetCutFunction(plane)
-    toward_camera = vtkTransform()
-    toward_camera.Translate(-1.0, 0.0, 0.0)
-    move = vtkTransformPolyDataFilter()
-    move.SetInputConnection(cut.GetOutputPort())
-    move.SetTransform(toward_camera)
-    line_mapper = vtkPolyDataMapper()
-    line_mapper.SetInputConnection(move.GetOutputPort())
-    line_mapper.ScalarVisibilityOff()
-    lines = vtkActor()
-    lines.SetMapper(line_mapper)
-    lines.GetProperty().SetColor(0.55, 0.8, 1.0)
-    lines.GetProperty().SetLineWidth(1.0)
-    lines.GetProperty().LightingOff()
-    renderer.AddActor(lines)
-
-    renderer.ResetCamera()
-    camera = renderer.GetActiveCamera()
-    fp = camera.GetFocalPoint()
-    camera.SetFocalPoint(x, fp[1], fp[2])
-    camera.SetPosition(x - camera.GetDistance(), fp[1], fp[2])
-    camera.SetViewUp(0, 0, -1)
-    camera.ParallelProjectionOn()
-    renderer.ResetCamera()
-    # The whole slice in the scene's viewport (80% of the width).
+    renderer.AddActor(pictures.outline(surfaces, 0, x, -1.0))
+    # The whole slice in the scene's viewport.
     bounds = fine.GetBounds()
-    aspect = 0.8 * size[0] / size[1]
-    camera.SetParallelScale(0.51 * max(bounds[5] - bounds[4], (bounds[3] - bounds[2]) / aspect))
-    labels = vtkDoubleArray()
-    for v in (0.01, 0.1, 1.0):
-        labels.InsertNextValue(v)
-    write_png(with_scalar_bar(renderer, lut, "G (W/m2)", background, labels), size, path)
+    pictures.slice_camera(renderer, 0, -1.0, (0, 0, -1), bounds[5] - bounds[4], bounds[3] - bounds[2],
+                          size, at=x)
+    pictures.write_slice_png(renderer, lut, (0.01, 0.1, 1.0), size, path)
 
 
 def main():
     args = parse_args()
-    os.makedirs(args.outdir, exist_ok=True)
     start = time.time()
     labels = read_labels()
-    print(f"read {DATA}: {labels.GetDimensions()} voxels, spacing {labels.GetSpacing()} mm, "
-          f"labels {labels.GetScalarRange()[0]:.0f} .. {labels.GetScalarRange()[1]:.0f}")
+    pictures.print_read(DATA, labels, "labels")
     coarse = sample(labels, BLOCK, COARSE_DIMS)
     fine = sample(labels, RENDER_STEP, [COARSE_DIMS[a] * BLOCK[a] // RENDER_STEP[a] for a in range(3)])
     G = solve(coarse, fine, args.light, args.threads)
-    G_lum = luminance(G)
-    print(f"baked G onto {G.GetDimensions()}: {G_lum.GetScalarRange()[0]:.3f} .. "
-          f"{G_lum.GetScalarRange()[1]:.3f} W/m^2 ({time.time() - start:.1f} s)")
+    G_lum = pictures.baked_luminance(G, start)
     volume_picture(fine, G, args.size, os.path.join(args.outdir, "frog_labels_volume.png"))
     slice_picture(fine, G_lum, args.size, os.path.join(args.outdir, "frog_labels_slice.png"))
     print(f"done in {time.time() - start:.1f} s")

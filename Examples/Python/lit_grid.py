@@ -8,9 +8,24 @@ import json
 import sys
 
 from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkImagingCore import vtkImageReslice
+from vtkmodules.vtkImagingCore import vtkImageChangeInformation, vtkImageReslice, vtkImageShrink3D
 
 from volrad import vtkVolumetricRadiosity
+
+
+def average(image, factor):
+    """`image` averaged over blocks of factor^3 voxels (an algorithm, not
+    updated). vtkImageShrink3D keeps the origin, but the mean of fine voxels
+    f i .. f i + f - 1 belongs at their centre, (f - 1) / 2 fine voxels
+    further: the origin moves there."""
+    shrink = vtkImageShrink3D()
+    shrink.SetInputData(image)
+    shrink.SetShrinkFactors(factor, factor, factor)
+    shrink.AveragingOn()
+    centre = vtkImageChangeInformation()
+    centre.SetInputConnection(shrink.GetOutputPort())
+    centre.SetOriginTranslation([(factor - 1) / 2.0 * s for s in image.GetSpacing()])
+    return centre
 
 
 def solve(source, scene, threads, who):
