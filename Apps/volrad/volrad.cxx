@@ -19,9 +19,11 @@
 #include "vtkImageChangeInformation.h"
 #include "vtkImageData.h"
 #include "vtkImageShrink3D.h"
+#include "vtkLogger.h"
 #include "vtkMetaImageReader.h"
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
+#include "vtkOutputWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
@@ -217,7 +219,26 @@ struct ErrorCollector
   static void callback(vtkObject*, unsigned long, void* self, void* data)
   {
     auto* c = static_cast<ErrorCollector*>(self);
-    c->messages += (c->messages.empty() ? "" : "\n") + std::string(static_cast<const char*>(data));
+    c->messages += (c->messages.empty() ? "" : "\n") + plain(static_cast<const char*>(data));
+  }
+  /// VTK's "ERROR: In FILE, line N\nCLASS (0x...): message" (or
+  /// "Warning: In ...") as "message".
+  static std::string plain(std::string text)
+  {
+    const std::size_t line = text.find('\n');
+    if ((text.rfind("ERROR: In ", 0) == 0 || text.rfind("Warning: In ", 0) == 0) &&
+        line != std::string::npos) {
+      text = text.substr(line + 1);
+      const std::size_t open = text.find(" (0x"), close = text.find("): ");
+      if (open != std::string::npos && close != std::string::npos && open < close &&
+          text.find('\n') > close) {
+        text = text.substr(close + 3);
+      }
+    }
+    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) {
+      text.pop_back();
+    }
+    return text;
   }
 };
 
@@ -321,6 +342,16 @@ int main(int argc, char* argv[])
   vtkNew<vtkCallbackCommand> onError;
   onError->SetCallback(&ErrorCollector::callback);
   onError->SetClientData(&errors);
+  // VTK's own reports (its output window and logger) would repeat each error
+  // with pipeline details: volrad prints errors (collected above) and
+  // warnings (below) itself, one line each.
+  vtkOutputWindow::GetInstance()->SetDisplayMode(vtkOutputWindow::NEVER);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  vtkNew<vtkCallbackCommand> onWarning;
+  onWarning->SetCallback([](vtkObject*, unsigned long, void*, void* data) {
+    std::cerr << "volrad: warning: " << ErrorCollector::plain(static_cast<const char*>(data))
+              << "\n";
+  });
 
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->Update();
@@ -354,6 +385,7 @@ int main(int argc, char* argv[])
   }
   filter->SetNumberOfThreads(threads);
   filter->AddObserver(vtkCommand::ErrorEvent, onError);
+  filter->AddObserver(vtkCommand::WarningEvent, onWarning);
   vtkNew<vtkCallbackCommand> onProgress;
   onProgress->SetCallback(&showProgress);
   const bool terminal = isatty(STDERR_FILENO) != 0;

@@ -96,6 +96,9 @@ TEST(VolradCommand, ErrorsExitNonZeroWithAMessageAndNoOutput)
   CommandRun r = run(kData + "/neghip16.vti --scene " + bad + " -o " + out);
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("lights[0].colour"), std::string::npos) << r.output;
+  // One line, VTK's own reports (pipeline details) silenced.
+  EXPECT_EQ(r.output.rfind("volrad: ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(exists(out));
 
   r = run(kData + "/missing.vti -o " + out);
