@@ -31,7 +31,9 @@ DenseVolume sample(const std::string& name, int components)
   return v;
 }
 
+// One file per test: ctest runs them in parallel.
 const std::string kFile = std::string(VOLRAD_TEST_TMP_DIR) + "/roundtrip.vdb";
+const std::string kErrorsFile = std::string(VOLRAD_TEST_TMP_DIR) + "/errors.vdb";
 
 } // namespace
 
@@ -56,9 +58,8 @@ TEST(VdbVolume, WrittenGridsReadBack)
     for (int a = 0; a < 3; ++a) {
       EXPECT_GE(r.indexLower[a], v->indexLower[a]);
       EXPECT_LE(r.indexLower[a] + r.dims[a], v->indexLower[a] + v->dims[a]);
-      EXPECT_NEAR(r.origin[a],
-                  v->origin[a] + (r.indexLower[a] - v->indexLower[a]) * v->spacing[a],
-                  1e-12);
+      EXPECT_NEAR(
+        r.origin[a], v->origin[a] + (r.indexLower[a] - v->indexLower[a]) * v->spacing[a], 1e-12);
     }
     for (int z = 0; z < r.dims[2]; ++z) {
       for (int y = 0; y < r.dims[1]; ++y) {
@@ -67,10 +68,10 @@ TEST(VdbVolume, WrittenGridsReadBack)
                     Y = y + r.indexLower[1] - v->indexLower[1],
                     Z = z + r.indexLower[2] - v->indexLower[2];
           for (int k = 0; k < v->components; ++k) {
-            const std::size_t i = (std::size_t(x) + r.dims[0] * (y + std::size_t(r.dims[1]) * z)) *
-                                    v->components + k;
-            const std::size_t j = (std::size_t(X) + v->dims[0] * (Y + std::size_t(v->dims[1]) * Z)) *
-                                    v->components + k;
+            const std::size_t i =
+              (std::size_t(x) + r.dims[0] * (y + std::size_t(r.dims[1]) * z)) * v->components + k;
+            const std::size_t j =
+              (std::size_t(X) + v->dims[0] * (Y + std::size_t(v->dims[1]) * Z)) * v->components + k;
             EXPECT_EQ(r.values[i], v->values[j]);
           }
         }
@@ -84,7 +85,7 @@ TEST(VdbVolume, ProblemsAreNamed)
   if (!vdbSupported()) {
     GTEST_SKIP() << "built without OpenVDB";
   }
-  writeVdbGrids(kFile, { sample("density", 1) });
+  writeVdbGrids(kErrorsFile, { sample("density", 1) });
   auto message = [](auto f) {
     try {
       f();
@@ -93,9 +94,9 @@ TEST(VdbVolume, ProblemsAreNamed)
     }
     return std::string("no error");
   };
-  EXPECT_NE(message([] { readVdbGrid(kFile, "temperature"); }).find("its grids: density"),
+  EXPECT_NE(message([] { readVdbGrid(kErrorsFile, "temperature"); }).find("its grids: density"),
             std::string::npos);
-  EXPECT_NE(message([] { readVdbGrid(kFile, "density", 10); }).find("over the limit of 10"),
+  EXPECT_NE(message([] { readVdbGrid(kErrorsFile, "density", 10); }).find("over the limit of 10"),
             std::string::npos);
   EXPECT_NE(message([] { readVdbGrid("/nonexistent/x.vdb"); }).find("cannot read"),
             std::string::npos);

@@ -38,7 +38,9 @@ struct CommandRun
 /// Runs volrad with `args` (after `prefix`, e.g. "env -u DISPLAY ").
 CommandRun run(const std::string& args, const std::string& prefix = "")
 {
-  const std::string log = std::string(VOLRAD_TEST_OUTPUT_DIR) + "/volrad.log";
+  // One log per test: ctest runs the tests in parallel.
+  const std::string log = std::string(VOLRAD_TEST_OUTPUT_DIR) + "/volrad-" +
+                          ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".log";
   const int status = std::system(
     (prefix + std::string(VOLRAD_COMMAND) + " " + args + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
