@@ -308,6 +308,12 @@ vtkSmartPointer<vtkPolyData> makeWalls(const volrad::Scene& scene, const volrad:
   return walls;
 }
 
+/// (r, g, b) for a scene of C channels: grey scenes take their mean.
+volrad::ChannelValues channelValues(int C, double r, double g, double b)
+{
+  return C == 1 ? volrad::uniformChannels((r + g + b) / 3.0) : volrad::ChannelValues{ r, g, b };
+}
+
 /// The filter's material properties over the scene description's.
 void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescription& d)
 {
@@ -582,10 +588,7 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
         continue;
       }
       const int C = description.channels;
-      auto rgb = [C](double r, double g, double b) {
-        return C == 1 ? volrad::uniformChannels((r + g + b) / 3.0)
-                      : volrad::ChannelValues{ r, g, b };
-      };
+      auto rgb = [C](double r, double g, double b) { return channelValues(C, r, g, b); };
       volrad::BoundaryCondition bc;
       if (face[0] == 1.0) {
         bc.radiance = rgb(face[1], face[2], face[3]);
@@ -599,8 +602,7 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     applyMaterialProperties(this, description);
     for (const auto& l : this->Lights) {
       const int C = description.channels;
-      const volrad::ChannelValues rgb = C == 1 ? volrad::uniformChannels((l[4] + l[5] + l[6]) / 3.0)
-                                               : volrad::ChannelValues{ l[4], l[5], l[6] };
+      const volrad::ChannelValues rgb = channelValues(C, l[4], l[5], l[6]);
       if (l[0] == 0.0) {
         description.directionalLights.push_back({ volrad::Vec3(l[1], l[2], l[3]), rgb });
       } else {

@@ -99,9 +99,9 @@ FarField::FarField(const Scene& scene,
 
 void FarField::apply(const double* x, double* y, double* viewOut) const
 {
-  std::vector<double> scaled(el_.size());
-  forEach(el_.size(), [&](Index e) { scaled[e] = inScale_[e] * x[e]; });
-  gather(scaled.data(), y, viewOut, true);
+  scaled_.resize(el_.size());
+  forEach(el_.size(), [&](Index e) { scaled_[e] = inScale_[e] * x[e]; });
+  gather(scaled_.data(), y, viewOut, true);
   forEach(el_.size(), [&](Index e) { y[e] += self_[e] * x[e]; });
 }
 

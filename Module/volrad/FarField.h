@@ -52,7 +52,7 @@ private:
   static constexpr int kBalanceSteps = 6;
   std::vector<double> scale_, inScale_, self_;
   // Work arrays, per tree node (mutable: apply is logically const).
-  mutable std::vector<double> emit_, phi_;
+  mutable std::vector<double> emit_, phi_, scaled_;
   mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;
   mutable std::vector<Vec3> frontMoment_, psi_;
 };

@@ -87,6 +87,31 @@ void copyValues(const GridT& grid, const openvdb::CoordBBox& box, DenseVolume& o
   }
 }
 
+/// A grid of v's box with voxel i's value value(i); voxels equal to the
+/// background stay inactive.
+template<class GridT, class Value>
+typename GridT::Ptr fillGrid(const DenseVolume& v,
+                             const typename GridT::ValueType& background,
+                             Value&& value)
+{
+  auto grid = GridT::create(background);
+  auto acc = grid->getAccessor();
+  const openvdb::Coord lo(v.indexLower[0], v.indexLower[1], v.indexLower[2]);
+  std::size_t i = 0;
+  for (int z = 0; z < v.dims[2]; ++z) {
+    for (int y = 0; y < v.dims[1]; ++y) {
+      for (int x = 0; x < v.dims[0]; ++x, ++i) {
+        const typename GridT::ValueType val = value(i);
+        if (val != background) {
+          acc.setValue(lo + openvdb::Coord(x, y, z), val);
+        }
+      }
+    }
+  }
+  grid->setName(v.name);
+  return grid;
+}
+
 } // namespace
 
 std::vector<std::pair<std::string, std::string>> listVdbGrids(const std::string& path)
@@ -131,7 +156,8 @@ DenseVolume readVdbGrid(const std::string& path, const std::string& name, std::s
     const openvdb::Vec3d step = xf.indexToWorld(e) - o;
     for (int b = 0; b < 3; ++b) {
       if (b != a && std::abs(step[b]) > 1e-9 * h[a]) {
-        throw Error("grid '" + gridName + "': its transform rotates or shears; VolRad reads "
+        throw Error("grid '" + gridName +
+                    "': its transform rotates or shears; VolRad reads "
                     "axis-aligned grids (scale and translation) only");
       }
     }
@@ -159,18 +185,22 @@ DenseVolume readVdbGrid(const std::string& path, const std::string& name, std::s
   out.origin = Vec3(first[0], first[1], first[2]);
   if (base->isType<openvdb::FloatGrid>()) {
     out.values.resize(std::size_t(count));
-    copyValues<openvdb::FloatGrid, 1>(*openvdb::gridConstPtrCast<openvdb::FloatGrid>(base), box, out);
+    copyValues<openvdb::FloatGrid, 1>(
+      *openvdb::gridConstPtrCast<openvdb::FloatGrid>(base), box, out);
   } else if (base->isType<openvdb::DoubleGrid>()) {
     out.values.resize(std::size_t(count));
-    copyValues<openvdb::DoubleGrid, 1>(*openvdb::gridConstPtrCast<openvdb::DoubleGrid>(base), box, out);
+    copyValues<openvdb::DoubleGrid, 1>(
+      *openvdb::gridConstPtrCast<openvdb::DoubleGrid>(base), box, out);
   } else if (base->isType<openvdb::Vec3SGrid>()) {
     out.components = 3;
     out.values.resize(std::size_t(count) * 3);
-    copyValues<openvdb::Vec3SGrid, 3>(*openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(base), box, out);
+    copyValues<openvdb::Vec3SGrid, 3>(
+      *openvdb::gridConstPtrCast<openvdb::Vec3SGrid>(base), box, out);
   } else if (base->isType<openvdb::Vec3DGrid>()) {
     out.components = 3;
     out.values.resize(std::size_t(count) * 3);
-    copyValues<openvdb::Vec3DGrid, 3>(*openvdb::gridConstPtrCast<openvdb::Vec3DGrid>(base), box, out);
+    copyValues<openvdb::Vec3DGrid, 3>(
+      *openvdb::gridConstPtrCast<openvdb::Vec3DGrid>(base), box, out);
   } else {
     throw Error("grid '" + gridName + "' holds " + base->valueType() +
                 " values; VolRad reads float, double and vec3 grids");
@@ -178,7 +208,9 @@ DenseVolume readVdbGrid(const std::string& path, const std::string& name, std::s
   return out;
 }
 
-void writeVdbGrids(const std::string& path, const std::vector<DenseVolume>& volumes, float background)
+void writeVdbGrids(const std::string& path,
+                   const std::vector<DenseVolume>& volumes,
+                   float background)
 {
   openvdb::initialize();
   openvdb::GridPtrVec grids;
@@ -195,41 +227,17 @@ void writeVdbGrids(const std::string& path, const std::vector<DenseVolume>& volu
     xf->postTranslate(openvdb::Vec3d(v.origin[0] - v.indexLower[0] * v.spacing[0],
                                      v.origin[1] - v.indexLower[1] * v.spacing[1],
                                      v.origin[2] - v.indexLower[2] * v.spacing[2]));
-    std::size_t k = 0;
-    const openvdb::Coord lo(v.indexLower[0], v.indexLower[1], v.indexLower[2]);
     if (v.components == 1) {
-      auto grid = openvdb::FloatGrid::create(background);
-      auto acc = grid->getAccessor();
-      for (int z = 0; z < v.dims[2]; ++z) {
-        for (int y = 0; y < v.dims[1]; ++y) {
-          for (int x = 0; x < v.dims[0]; ++x) {
-            const float value = v.values[k++];
-            if (value != background) {
-              acc.setValue(lo + openvdb::Coord(x, y, z), value);
-            }
-          }
-        }
-      }
-      grid->setTransform(xf);
-      grid->setName(v.name);
+      auto grid =
+        fillGrid<openvdb::FloatGrid>(v, background, [&](std::size_t i) { return v.values[i]; });
       grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+      grid->setTransform(xf);
       grids.push_back(grid);
     } else {
-      auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(background));
-      auto acc = grid->getAccessor();
-      for (int z = 0; z < v.dims[2]; ++z) {
-        for (int y = 0; y < v.dims[1]; ++y) {
-          for (int x = 0; x < v.dims[0]; ++x) {
-            const openvdb::Vec3s value(v.values[k], v.values[k + 1], v.values[k + 2]);
-            k += 3;
-            if (value != openvdb::Vec3s(background)) {
-              acc.setValue(lo + openvdb::Coord(x, y, z), value);
-            }
-          }
-        }
-      }
+      auto grid = fillGrid<openvdb::Vec3SGrid>(v, openvdb::Vec3s(background), [&](std::size_t i) {
+        return openvdb::Vec3s(v.values[3 * i], v.values[3 * i + 1], v.values[3 * i + 2]);
+      });
       grid->setTransform(xf);
-      grid->setName(v.name);
       grids.push_back(grid);
     }
   }
