@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <string>
 
 vtkStandardNewMacro(vtkVolumetricRadiosity);
@@ -318,9 +319,14 @@ volrad::ChannelValues channelValues(int C, double r, double g, double b)
 void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescription& d)
 {
   volrad::MaterialMap& m = d.material.map;
-  if (self->GetMaterialPreset() && *self->GetMaterialPreset()) {
+  const char* preset = self->GetMaterialPreset();
+  if (preset && *preset && std::string(preset) != "none") {
     d.material.preset = self->GetMaterialPreset();
+    // The preset replaces the scene's curves, not how its scalars are stored.
+    const double slope = m.rescaleSlope, intercept = m.rescaleIntercept;
     m = volrad::materialPreset(self->GetMaterialPreset());
+    m.rescaleSlope = slope;
+    m.rescaleIntercept = intercept;
   }
   if (self->GetExtinctionFunction()) {
     m.extinction = toTransferFunction(self->GetExtinctionFunction());
@@ -337,6 +343,12 @@ void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescript
   if (self->GetSurfaceGradient() >= 0.0) {
     m.surfaceGradient = self->GetSurfaceGradient();
   }
+  if (!std::isnan(self->GetRescaleSlope())) {
+    m.rescaleSlope = self->GetRescaleSlope();
+  }
+  if (!std::isnan(self->GetRescaleIntercept())) {
+    m.rescaleIntercept = self->GetRescaleIntercept();
+  }
   if (!m.active() &&
       (self->GetAlbedoFunction() || self->GetColorFunction() || self->GetEmissionFunction())) {
     throw volrad::Error("the material needs an ExtinctionFunction (or a MaterialPreset) for its "
@@ -348,6 +360,8 @@ void applyMaterialProperties(vtkVolumetricRadiosity* self, volrad::SceneDescript
 } // namespace
 
 vtkVolumetricRadiosity::vtkVolumetricRadiosity()
+  : RescaleSlope(std::numeric_limits<double>::quiet_NaN())
+  , RescaleIntercept(std::numeric_limits<double>::quiet_NaN())
 {
   this->SetNumberOfOutputPorts(2);
 }
@@ -412,8 +426,7 @@ volradTransferFunctionProperty(EmissionFunction, vtkColorTransferFunction);
 void vtkVolumetricRadiosity::SetOpenFace(int face, double r, double g, double b)
 {
   if (face < 0 || face > 5) {
-    vtkErrorMacro("SetOpenFace: face " << face
-                                       << " is not 0-5 (xmin, xmax, ymin, ymax, zmin, zmax)");
+    vtkErrorMacro("SetOpenFace: the face is not 0-5 (xmin, xmax, ymin, ymax, zmin, zmax)");
     return;
   }
   this->Faces[face] = { 1.0, r, g, b, 0.0, 0.0, 0.0 };
@@ -429,12 +442,37 @@ void vtkVolumetricRadiosity::SetWallFace(int face,
                                          double eb)
 {
   if (face < 0 || face > 5) {
-    vtkErrorMacro("SetWallFace: face " << face
-                                       << " is not 0-5 (xmin, xmax, ymin, ymax, zmin, zmax)");
+    vtkErrorMacro("SetWallFace: the face is not 0-5 (xmin, xmax, ymin, ymax, zmin, zmax)");
     return;
   }
   this->Faces[face] = { 2.0, r, g, b, er, eg, eb };
   this->Modified();
+}
+
+namespace
+{
+/// A face number given as a double: itself when it is a whole 0-5, else 6
+/// (which the int setters refuse, naming it).
+int faceNumber(double face)
+{
+  return face >= 0.0 && face <= 5.0 && face == std::floor(face) ? static_cast<int>(face) : 6;
+}
+} // namespace
+
+void vtkVolumetricRadiosity::SetOpenFace(double face, double r, double g, double b)
+{
+  this->SetOpenFace(faceNumber(face), r, g, b);
+}
+
+void vtkVolumetricRadiosity::SetWallFace(double face,
+                                         double r,
+                                         double g,
+                                         double b,
+                                         double er,
+                                         double eg,
+                                         double eb)
+{
+  this->SetWallFace(faceNumber(face), r, g, b, er, eg, eb);
 }
 
 void vtkVolumetricRadiosity::SetEnvironmentRadiance(double r, double g, double b)
@@ -449,6 +487,60 @@ void vtkVolumetricRadiosity::RemoveAllFaceSettings()
 {
   this->Faces = {};
   this->Modified();
+}
+
+namespace
+{
+/// Clears the faces set as `type` (1 open, 2 wall); true when one was.
+bool clearFaces(std::array<std::array<double, 7>, 6>& faces, double type)
+{
+  bool changed = false;
+  for (auto& face : faces) {
+    if (face[0] == type) {
+      face = {};
+      changed = true;
+    }
+  }
+  return changed;
+}
+
+/// Removes the lights of `type` (0 directional, 1 point); true when one was.
+bool removeLights(std::vector<std::array<double, 7>>& lights, double type)
+{
+  const auto end =
+    std::remove_if(lights.begin(), lights.end(), [type](const auto& l) { return l[0] == type; });
+  const bool changed = end != lights.end();
+  lights.erase(end, lights.end());
+  return changed;
+}
+} // namespace
+
+void vtkVolumetricRadiosity::RemoveAllOpenFaces()
+{
+  if (clearFaces(this->Faces, 1.0)) {
+    this->Modified();
+  }
+}
+
+void vtkVolumetricRadiosity::RemoveAllWallFaces()
+{
+  if (clearFaces(this->Faces, 2.0)) {
+    this->Modified();
+  }
+}
+
+void vtkVolumetricRadiosity::RemoveAllDirectionalLights()
+{
+  if (removeLights(this->Lights, 0.0)) {
+    this->Modified();
+  }
+}
+
+void vtkVolumetricRadiosity::RemoveAllPointLights()
+{
+  if (removeLights(this->Lights, 1.0)) {
+    this->Modified();
+  }
 }
 
 void vtkVolumetricRadiosity::AddDirectionalLight(double dx,
@@ -665,6 +757,8 @@ void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AlbedoFunction: " << this->AlbedoFunction.Get() << "\n";
   os << indent << "ColorFunction: " << this->ColorFunction.Get() << "\n";
   os << indent << "EmissionFunction: " << this->EmissionFunction.Get() << "\n";
+  os << indent << "RescaleSlope: " << this->RescaleSlope << "\n";
+  os << indent << "RescaleIntercept: " << this->RescaleIntercept << "\n";
   os << indent << "SurfaceGradient: " << this->SurfaceGradient << "\n";
   os << indent << "Lights: " << this->Lights.size() << "\n";
   os << indent << "Channels: " << this->Channels << "\n";

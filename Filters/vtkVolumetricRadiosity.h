@@ -100,8 +100,16 @@ public:
   void SetOpenFace(int face, double r, double g, double b);
   void SetWallFace(int face, double r, double g, double b, double er, double eg, double eb);
   void SetEnvironmentRadiance(double r, double g, double b);
-  /** Back to the scene file's faces. */
+  /**
+   * The same with the face number as a double: ParaView's repeated
+   * properties (OpenFaces, WallFaces) pass doubles only.
+   */
+  void SetOpenFace(double face, double r, double g, double b);
+  void SetWallFace(double face, double r, double g, double b, double er, double eg, double eb);
+  /** Back to the scene file's faces: all of them, the open ones, the walls. */
   void RemoveAllFaceSettings();
+  void RemoveAllOpenFaces();
+  void RemoveAllWallFaces();
   ///@}
 
   ///@{
@@ -116,7 +124,8 @@ public:
    * active scalars) become optical coefficients, in the idiom of
    * vtkVolumeProperty. Each of these replaces the same part of the scene
    * file's material; coefficient arrays the input has still win.
-   * MaterialPreset: "ct", "ct-bone", "mr", "cloud" (README); empty: none.
+   * MaterialPreset: "ct", "ct-bone", "mr", "cloud" (README); empty or
+   * "none": none.
    * ExtinctionFunction: kappa_t [1/length] of the scalar.
    * AlbedoFunction: the scattering albedo in [0, 1].
    * ColorFunction: per-channel factor of the albedo (the colour of the
@@ -142,6 +151,18 @@ public:
 
   ///@{
   /**
+   * The material reads slope x scalar + intercept (DICOM's RescaleSlope and
+   * RescaleIntercept: stored CT values to Hounsfield units, e.g. intercept
+   * -1024). Unset (NaN, the default): the scene file's, else 1 and 0.
+   */
+  vtkSetMacro(RescaleSlope, double);
+  vtkGetMacro(RescaleSlope, double);
+  vtkSetMacro(RescaleIntercept, double);
+  vtkGetMacro(RescaleIntercept, double);
+  ///@}
+
+  ///@{
+  /**
    * Lights besides the scene file's. A directional light travels along
    * (dx, dy, dz) with irradiance (r, g, b) [W/m^2] on a plane normal to it;
    * a point light at (x, y, z) has intensity (r, g, b) [W/sr]. Grey scenes
@@ -150,6 +171,9 @@ public:
   void AddDirectionalLight(double dx, double dy, double dz, double r, double g, double b);
   void AddPointLight(double x, double y, double z, double r, double g, double b);
   void RemoveAllLights();
+  /** Removes one kind only (ParaView's light lists clear them one by one). */
+  void RemoveAllDirectionalLights();
+  void RemoveAllPointLights();
   int GetNumberOfLights();
   /**
    * Adds the switched-on lights of a renderer, so that the lighting matches
@@ -182,6 +206,8 @@ protected:
   vtkSmartPointer<vtkColorTransferFunction> ColorFunction;
   vtkSmartPointer<vtkColorTransferFunction> EmissionFunction;
   double SurfaceGradient = -1.0;
+  double RescaleSlope;
+  double RescaleIntercept;
   int Channels = 0;
   char* SolverMethod = nullptr;
   double Epsilon = 0.0;

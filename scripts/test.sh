@@ -1,8 +1,19 @@
 #!/usr/bin/env bash
-# Runs every test: builds (installing what is missing), then ctest.
+# Runs every test: the main build (system VTK) and its ctest, then the
+# ParaView plugin's build and its ctest (pvpython). Debian's python3-vtk9 and
+# python3-paraview conflict, so the two take turns (scripts/install-deps*.sh);
+# at the end the main build's packages are put back.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$root/scripts/build.sh"
 build="${VOLRAD_BUILD_DIR:-$root/build}"
-cd "$build"
-ctest --output-on-failure --parallel "$(nproc)" --timeout 900
+status=0
+(cd "$build" && ctest --output-on-failure --parallel "$(nproc)" --timeout 900) || status=1
+
+if [ "${VOLRAD_SKIP_PARAVIEW:-0}" != 1 ]; then
+  bash "$root/scripts/build-paraview.sh"
+  (cd "${VOLRAD_PARAVIEW_BUILD_DIR:-$root/build-paraview}" &&
+     ctest --output-on-failure --timeout 900) || status=1
+  bash "$root/scripts/install-deps.sh"
+fi
+exit $status

@@ -453,6 +453,22 @@ TEST(VolumetricRadiosity, SceneSettingsAsPropertiesMatchTheSceneFile)
   ASSERT_NE(method, nullptr);
   EXPECT_EQ(method->GetValue(0), "dense");
 
+  // Removing one kind of face or light leaves the other kind (ParaView clears
+  // its lists one property at a time, then sets them again).
+  f->RemoveAllOpenFaces();
+  f->RemoveAllPointLights();
+  f->SetOpenFace(5, 0.1, 0.2, 0.3);
+  EXPECT_EQ(f->GetNumberOfLights(), 1);
+  f->Update();
+  EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()), reference);
+  f->RemoveAllWallFaces();
+  f->RemoveAllDirectionalLights();
+  EXPECT_EQ(f->GetNumberOfLights(), 0);
+  f->SetWallFace(4, 0.5, 0.4, 0.3, 0, 0, 1);
+  f->AddDirectionalLight(0.3, -0.2, -1, 2, 2, 2);
+  f->Update();
+  EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()), reference);
+
   // Back to the scene's faces: a different field.
   f->RemoveAllFaceSettings();
   f->Update();

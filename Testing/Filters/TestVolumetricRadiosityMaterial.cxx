@@ -143,6 +143,35 @@ TEST(VolumetricRadiosityMaterial, TransferFunctionPropertiesMatchTheSceneFile)
   EXPECT_NE(incident(f), g);
 }
 
+TEST(VolumetricRadiosityMaterial, RescalePropertiesMatchTheSceneFile)
+{
+  // Stored CT values (HU + 1024), mapped with the scene file's rescale and
+  // with the filter's properties: one field; the properties win over the file.
+  auto image = ctVolume();
+  vtkDataArray* hu = image->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < hu->GetNumberOfTuples(); ++i) {
+    hu->SetTuple1(i, 0.5 * (hu->GetTuple1(i) + 1024.0));
+  }
+  const char* rescaled = R"({"version": 1, "channels": 3, "solver": {"method": "dense"},
+    "material": {"preset": "ct", "rescale_slope": 2, "rescale_intercept": -1024},
+    "lights": [{"type": "directional", "direction": [0.2, 0.3, -1], "irradiance": 1}]})";
+  vtkNew<vtkVolumetricRadiosity> byFile;
+  byFile->SetInputData(image);
+  byFile->SetSceneJSON(rescaled);
+  const std::vector<float> g = incident(byFile);
+  ASSERT_FALSE(g.empty());
+
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(R"({"version": 1, "channels": 3, "solver": {"method": "dense"},
+    "material": {"preset": "ct", "rescale_slope": 7, "rescale_intercept": 3},
+    "lights": [{"type": "directional", "direction": [0.2, 0.3, -1], "irradiance": 1}]})");
+  EXPECT_NE(incident(f), g);
+  f->SetRescaleSlope(2.0);
+  f->SetRescaleIntercept(-1024.0);
+  EXPECT_EQ(incident(f), g);
+}
+
 TEST(VolumetricRadiosityMaterial, ArraysWinOverTheMaterial)
 {
   auto image = ctVolume();
