@@ -27,6 +27,7 @@
 #include "vtkStringArray.h"
 #include "vtkUnsignedCharArray.h"
 
+#include "volrad/DirectLight.h"
 #include "volrad/Error.h"
 #include "volrad/Normals.h"
 #include "volrad/RenderColors.h"
@@ -37,6 +38,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <sstream>
 #include <string>
 
 vtkStandardNewMacro(vtkVolumetricRadiosity);
@@ -215,6 +217,14 @@ void addPointArray(vtkImageData* out,
   a->SetNumberOfComponents(channels);
   a->SetNumberOfTuples(vtkIdType(values.size() / channels));
   for (std::size_t i = 0; i < values.size(); ++i) {
+    // Beyond float's range the stored field would be silently infinite.
+    if (!(std::abs(values[i]) <= std::numeric_limits<float>::max())) {
+      std::ostringstream message;
+      message << name << " = " << values[i] << " at voxel " << i / channels
+              << " does not fit the output's float32: scale the emission, lights and "
+                 "environment down (the field scales with them)";
+      throw volrad::Error(message.str());
+    }
     a->SetValue(vtkIdType(i), static_cast<float>(values[i]));
   }
   out->GetPointData()->AddArray(a);
@@ -671,6 +681,7 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     if (this->Epsilon > 0.0) {
       description.solver.epsilon = this->Epsilon;
     }
+    description.solver.memoryBudgetBytes = this->MemoryBudget * 1024.0 * 1024.0;
     if (this->MaterialScalars && *this->MaterialScalars) {
       description.material.scalars = this->MaterialScalars;
     }
@@ -705,6 +716,9 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     const volrad::Scene scene = makeScene(input, description, missing);
     if (!missing.empty()) {
       vtkWarningMacro("the input has no point-data array " << missing << ": taken as zero");
+    }
+    for (const std::string& message : volrad::lightsWallsKeepOut(scene)) {
+      vtkWarningMacro(<< message);
     }
     const volrad::Solution solution =
       volrad::solve(scene, description.solver, this->NumberOfThreads, [this](double f) {
@@ -751,6 +765,7 @@ void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SceneJSON: " << (this->SceneJSON ? this->SceneJSON : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "MemoryBudget: " << this->MemoryBudget << " MiB\n";
   os << indent << "MaterialPreset: " << (this->MaterialPreset ? this->MaterialPreset : "(none)")
      << "\n";
   os << indent << "ExtinctionFunction: " << this->ExtinctionFunction.Get() << "\n";

@@ -113,6 +113,16 @@ public:
   ///@}
 
   ///@{
+  /**
+   * Memory budget of the solve [MiB]: above its estimate of what it needs,
+   * the solve refuses before allocating, naming both figures. 0 (default):
+   * the solver's own (hierarchical: half the physical memory; dense: 4 GiB).
+   */
+  vtkSetClampMacro(MemoryBudget, double, 0.0, 1e12);
+  vtkGetMacro(MemoryBudget, double);
+  ///@}
+
+  ///@{
   /** Threads of the solve; 0 (default) uses all cores, 1 is deterministic. */
   vtkSetClampMacro(NumberOfThreads, int, 0, 4096);
   vtkGetMacro(NumberOfThreads, int);
@@ -200,6 +210,7 @@ protected:
   char* SceneFileName = nullptr;
   char* SceneJSON = nullptr;
   int NumberOfThreads = 0;
+  double MemoryBudget = 0.0;
   char* MaterialPreset = nullptr;
   vtkSmartPointer<vtkPiecewiseFunction> ExtinctionFunction;
   vtkSmartPointer<vtkPiecewiseFunction> AlbedoFunction;

@@ -1,14 +1,21 @@
 #!/usr/bin/env bash
-# Runs every test: the main build (system VTK) and its ctest, then the
-# ParaView plugin's build and its ctest (pvpython). Debian's python3-vtk9 and
-# python3-paraview conflict, so the two take turns (scripts/install-deps*.sh);
-# at the end the main build's packages are put back.
+# Runs every test: the main build (system VTK) and its ctest; the core, its
+# tests and the fuzzers under ASan and UBSan (scripts/test-sanitizers.sh);
+# then the ParaView plugin's build and its ctest (pvpython). Debian's
+# python3-vtk9 and python3-paraview conflict, so the main and the ParaView
+# builds take turns (scripts/install-deps*.sh); at the end the main build's
+# packages are put back. VOLRAD_SKIP_SANITIZERS=1 / VOLRAD_SKIP_PARAVIEW=1
+# leave a part out.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$root/scripts/build.sh"
 build="${VOLRAD_BUILD_DIR:-$root/build}"
 status=0
 (cd "$build" && ctest --output-on-failure --parallel "$(nproc)" --timeout 900) || status=1
+
+if [ "${VOLRAD_SKIP_SANITIZERS:-0}" != 1 ]; then
+  bash "$root/scripts/test-sanitizers.sh" || status=1
+fi
 
 if [ "${VOLRAD_SKIP_PARAVIEW:-0}" != 1 ]; then
   bash "$root/scripts/build-paraview.sh"

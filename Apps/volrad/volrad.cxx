@@ -48,7 +48,7 @@ namespace {
 
 const char* kUsage =
   R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti|.vdb [--png PICTURE.png] [--grid NAME]
-              [--shrink N] [--threads N]
+              [--shrink N] [--threads N] [--memory-budget MIB]
 
 Solves volumetric radiosity in the volume INPUT lit as the scene file says
 (docs/scene-format.md; without one, the defaults and the input's arrays
@@ -71,6 +71,9 @@ options:
   --grid NAME    the grid of a .vdb input (default: its first)
   --shrink N     solve on a grid N times coarser along each axis (averaging)
   --threads N    threads (default 0: all cores; 1: deterministic)
+  --memory-budget MIB
+                 refuse, before allocating, a solve whose estimate passes MIB
+                 mebibytes (default: half the physical memory; dense: 4 GiB)
   -h, --help     this text
 )";
 
@@ -192,6 +195,10 @@ vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path,
   if (e == ".vtk") {
     auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
     r->SetFileName(path.c_str());
+    // Every array of the file, not only its first SCALARS (kappa_a, E_I, ...).
+    r->ReadAllScalarsOn();
+    r->ReadAllVectorsOn();
+    r->ReadAllFieldsOn();
     return r;
   }
   error = "'" + path + "': unknown volume format '" + e +
@@ -269,6 +276,7 @@ int main(int argc, char* argv[])
 {
   std::string input, scene, output, png, grid;
   int threads = 0, shrink = 1;
+  double memoryBudget = 0.0;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* what) -> std::string {
@@ -303,6 +311,18 @@ int main(int argc, char* argv[])
                       v + "'");
         }
         (arg == "--threads" ? threads : shrink) = int(n);
+      } else if (arg == "--memory-budget") {
+        const std::string v = value("--memory-budget");
+        std::size_t used = 0;
+        double mib = -1.0;
+        try {
+          mib = std::stod(v, &used);
+        } catch (const std::exception&) {
+        }
+        if (used != v.size() || !(mib > 0.0) || mib > 1e12) {
+          return fail("--memory-budget takes a positive number of MiB, not '" + v + "'");
+        }
+        memoryBudget = mib;
       } else if (!arg.empty() && arg[0] == '-') {
         return fail("unknown option '" + arg + "'\n" + kUsage);
       } else if (input.empty()) {
@@ -356,9 +376,12 @@ int main(int argc, char* argv[])
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->Update();
   vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (!errors.messages.empty() || !image || image->GetNumberOfPoints() == 0) {
+  if (!errors.messages.empty() || !image) {
     return fail("cannot read '" + input + "' as image data" +
                 (errors.messages.empty() ? "" : ": " + errors.messages));
+  }
+  if (image->GetNumberOfPoints() == 0) {
+    return fail("'" + input + "': the input image is empty (no points)");
   }
   vtkNew<vtkImageShrink3D> shrinker;
   vtkNew<vtkImageChangeInformation> centred;
@@ -384,6 +407,7 @@ int main(int argc, char* argv[])
     filter->SetSceneFileName(scene.c_str());
   }
   filter->SetNumberOfThreads(threads);
+  filter->SetMemoryBudget(memoryBudget);
   filter->AddObserver(vtkCommand::ErrorEvent, onError);
   filter->AddObserver(vtkCommand::WarningEvent, onWarning);
   vtkNew<vtkCallbackCommand> onProgress;

@@ -44,12 +44,15 @@ int main()
     }
     std::printf("\n");
   }
+  // Over 5184 voxel-channels about 14 Monte Carlo errors pass 3 sigma by
+  // chance; past 5 sigma, one in 300 runs would have one. The 3% is the
+  // zonal model's own difference from the transport Monte Carlo.
   double worst = 0.0;
   int checked = 0;
   for (std::size_t i = 0; i < sol.G.size(); ++i) {
     if (sol.G[i] > 0.05) {
       worst =
-        std::max(worst, std::abs(sol.G[i] - mc.G[i]) / (3.0 * mc.GStdErr[i] + 0.03 * sol.G[i]));
+        std::max(worst, std::abs(sol.G[i] - mc.G[i]) / (5.0 * mc.GStdErr[i] + 0.03 * sol.G[i]));
       ++checked;
     }
   }
@@ -64,7 +67,7 @@ int main()
               e.escaped,
               e.relativeResidual());
   std::printf(
-    "dense vs Monte Carlo over %d voxel-channels: worst |diff| / (3 sigma + 3%%) = %.2f\n",
+    "dense vs Monte Carlo over %d voxel-channels: worst |diff| / (5 sigma + 3%%) = %.2f\n",
     checked,
     worst);
   const bool ok = worst < 1.0 && e.relativeResidual() < 1e-6;

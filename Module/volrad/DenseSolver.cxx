@@ -153,9 +153,9 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
     std::ostringstream m;
     m << "the dense solver would need about " << bytes / (1024.0 * 1024.0) << " MiB for "
       << scene.grid.voxelCount() << " voxels and " << scene.grid.patchCount()
-      << " boundary patches, above its limit of " << options.memoryLimitBytes / (1024.0 * 1024.0)
-      << " MiB; grids this large need the hierarchical solver, which this version does not have "
-         "yet";
+      << " boundary patches, over its memory budget of "
+      << options.memoryLimitBytes / (1024.0 * 1024.0)
+      << " MiB: use the hierarchical solver (solver.method), or raise the budget";
     throw Error(m.str());
   }
   const Grid& g = scene.grid;

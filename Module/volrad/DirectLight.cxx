@@ -218,4 +218,41 @@ DirectLighting computeDirectLight(const Scene& scene, int channel, const Quadrat
   return out;
 }
 
+std::vector<std::string> lightsWallsKeepOut(const Scene& scene)
+{
+  std::vector<std::string> messages;
+  const Grid& g = scene.grid;
+  for (std::size_t i = 0; i < scene.directionalLights.size(); ++i) {
+    const Vec3 d = scene.directionalLights[i].direction;
+    bool enters = false;
+    for (int fi = 0; fi < kFaceCount; ++fi) {
+      const Face f = static_cast<Face>(fi);
+      enters = enters || (d.dot(faceInwardNormal(f)) > 0.0 && faceIsOpen(scene, f));
+    }
+    if (!enters) {
+      messages.push_back("directional light " + std::to_string(i) +
+                         " meets only walls where it would enter: it lights nothing");
+    }
+  }
+  const Vec3 lo = g.lower(), hi = g.upper();
+  for (std::size_t i = 0; i < scene.pointLights.size(); ++i) {
+    const Vec3 p = scene.pointLights[i].position;
+    bool outside = false, seesOpenFace = false;
+    for (int a = 0; a < 3; ++a) {
+      // Faces 2a (min) and 2a + 1 (max) along axis a, seen from their outer side.
+      for (int side = 0; side < 2; ++side) {
+        const bool beyond = side == 0 ? p[a] < lo[a] : p[a] > hi[a];
+        outside = outside || beyond;
+        seesOpenFace = seesOpenFace || (beyond && faceIsOpen(scene, static_cast<Face>(2 * a + side)));
+      }
+    }
+    if (outside && !seesOpenFace) {
+      messages.push_back("point light " + std::to_string(i) + " at (" + std::to_string(p[0]) + ", " +
+                         std::to_string(p[1]) + ", " + std::to_string(p[2]) +
+                         ") is outside the volume behind walls: it lights nothing");
+    }
+  }
+  return messages;
+}
+
 } // namespace volrad

@@ -13,6 +13,7 @@
 #include "volrad/Quadrature.h"
 #include "volrad/Scene.h"
 
+#include <string>
 #include <vector>
 
 namespace volrad {
@@ -26,5 +27,11 @@ struct DirectLighting
 };
 
 DirectLighting computeDirectLight(const Scene& scene, int channel, const QuadratureSettings& q);
+
+/// One message per light that walls keep out entirely: a directional light
+/// whose every entering face is a wall, a point light outside the volume
+/// that faces only walls. Not errors (the answer, no light from it, is
+/// right), but rarely what the scene's author meant.
+std::vector<std::string> lightsWallsKeepOut(const Scene& scene);
 
 } // namespace volrad

@@ -40,7 +40,8 @@ void forEachNodeOfLevel(const ClusterTree& t, int level, F&& f)
 FarField::FarField(const Scene& scene,
                    const ClusterTree& tree,
                    const LinkSet& links,
-                   const NearField& near)
+                   const NearField& near,
+                   const ProgressRange& progress)
   : scene_(scene)
   , tree_(tree)
   , links_(links)
@@ -80,6 +81,7 @@ FarField::FarField(const Scene& scene,
         inScale_[e] = std::clamp(std::sqrt(inScale_[e] * ratio), 0.5, 2.0);
       }
     }
+    progress.report(double(step + 1) / (kBalanceSteps + 1));
   }
   std::fill(received.begin(), received.end(), 0.0);
   gather(inScale_.data(), received.data(), nullptr, false);

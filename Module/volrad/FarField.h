@@ -19,6 +19,7 @@
 #include "volrad/ClusterTree.h"
 #include "volrad/LinkSet.h"
 #include "volrad/NearField.h"
+#include "volrad/Progress.h"
 
 #include <vector>
 
@@ -27,10 +28,13 @@ namespace volrad {
 class FarField
 {
 public:
+  /// Balancing sweeps every link a few times: `progress` hears after each
+  /// (and may abort).
   FarField(const Scene& scene,
            const ClusterTree& tree,
            const LinkSet& links,
-           const NearField& near);
+           const NearField& near,
+           const ProgressRange& progress = {});
 
   /// y[e] += far collided power of element e for element radiosities x.
   /// With viewOut, also the far G of voxels that are not elements.

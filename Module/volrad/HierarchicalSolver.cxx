@@ -285,8 +285,8 @@ Solution solveHierarchical(const Scene& scene,
         << std::llround((baseBytes + linkBytes) / (1 << 20)) << " MiB ("
         << std::llround(baseBytes / (1 << 20)) << " MiB before any link, "
         << std::llround(linkBytes / (1 << 20)) << " MiB for the fewest links it may need), over "
-        << "its memory budget of " << std::llround(memoryLimit / (1 << 20))
-        << " MiB: raise solver.epsilon, or shrink the volume";
+        << "its memory budget of " << memoryLimit / double(1 << 20)
+        << " MiB: raise solver.epsilon or the budget, or shrink the volume";
     throw Error(msg.str());
   }
   const std::size_t maxLinks = std::size_t((memoryLimit - baseBytes) / double(kBytesPerLink));
@@ -359,12 +359,17 @@ Solution solveHierarchical(const Scene& scene,
       report.nearSeconds += since(t);
       const ExchangeElements& el = near.elements;
       const Index n = el.size();
+      // Between the steps that report nothing themselves: a chance to abort.
+      const ProgressRange setup = gp.sub(0.3, 0.3);
       const VoxelPyramid pyramid(scene, chans[0]);
+      setup.report(1.0);
       const ClusterTree tree(scene, chans[0], pyramid);
+      setup.report(1.0);
       std::vector<double> target(n);
       for (Index e = 0; e < n; ++e) {
         target[e] = exchangeRowTarget(scene, chans[0], el, e);
       }
+      setup.report(1.0);
 
       // Empty voxels' views are refined as if they held the mean medium
       // (one optical depth per voxel in a vacuum).
@@ -387,7 +392,9 @@ Solution solveHierarchical(const Scene& scene,
       std::vector<std::unique_ptr<Channel>> channels;
       for (const int ch : chans) {
         DirectLighting dl = computeDirectLight(scene, ch, opt.quadrature);
+        setup.report(1.0);
         ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
+        setup.report(1.0);
         auto c = std::make_unique<Channel>(ch, std::move(dl), std::move(sys), scene, near);
         for (Index e = 0; e < n; ++e) {
           if (c->sys.c[e] > 0.0) {
@@ -428,8 +435,9 @@ Solution solveHierarchical(const Scene& scene,
           }
         }
         far.reset();
-        links = refineLinks(tree, refinement, gp.sub(0.3 + 0.1 * pass, 0.35 + 0.1 * pass));
-        far = std::make_unique<FarField>(scene, tree, links, near);
+        links = refineLinks(tree, refinement, gp.sub(0.3 + 0.1 * pass, 0.33 + 0.1 * pass));
+        far = std::make_unique<FarField>(
+          scene, tree, links, near, gp.sub(0.33 + 0.1 * pass, 0.35 + 0.1 * pass));
         report.linkSeconds += since(t);
         report.peakBytes =
           std::max(report.peakBytes,

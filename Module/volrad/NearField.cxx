@@ -414,7 +414,12 @@ NearField computeNearField(const Scene& scene,
   // Views of the empty voxels next to elements.
   TripletLists views;
   const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
-  tbb::parallel_for(Index(0), nv, [&](Index v) {
+  // In blocks, with a progress report (and a chance to abort) after each:
+  // the empty voxels around a head or a cloud are many.
+  const Index viewBlock = std::max<Index>(4096, nv / 20);
+  for (Index b0 = 0; b0 < nv; b0 += viewBlock) {
+  const Index b1 = std::min(nv, b0 + viewBlock);
+  tbb::parallel_for(b0, b1, [&](Index v) {
     if (el.full[v] >= 0) {
       return;
     }
@@ -450,6 +455,8 @@ NearField computeNearField(const Scene& scene,
       local.push_back({ v, e, w });
     }
   });
+  progress.report(0.9 + 0.09 * double(b1) / double(nv));
+  }
   const std::vector<Triplet> viewRows = gatherTriplets(views);
   toRows(viewRows, nv, out.viewStart, out.viewColumn, out.viewValue);
   progress.report(1.0);

@@ -96,6 +96,16 @@ void Scene::validate() const
       throw Error("the grid origin must be finite");
     }
   }
+  // Lengths in any unit, from nanometres to gigametres; beyond, areas and
+  // the inverse squares of the exchange factors leave double's range.
+  const double hMin = grid.spacing.minCoeff(), hMax = grid.spacing.maxCoeff();
+  if (hMin < 1e-9 || hMax > 1e9 || hMax > 1e4 * hMin) {
+    std::ostringstream m;
+    m << "spacing (" << grid.spacing[0] << ", " << grid.spacing[1] << ", " << grid.spacing[2]
+      << ") must lie in [1e-9, 1e9], its largest at most 1e4 times its smallest (change the "
+         "length unit)";
+    throw Error(m.str());
+  }
   if (channels != 1 && channels != 3) {
     throw Error("channels = " + std::to_string(channels) + " must be 1 or 3");
   }

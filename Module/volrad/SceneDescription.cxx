@@ -368,7 +368,9 @@ SceneDescription parseSceneDescription(const std::string& jsonText)
   json j;
   try {
     j = json::parse(jsonText);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {
+    // parse_error, and also out_of_range for a number beyond double's range
+    // (found by Testing/Fuzz/FuzzSceneFile: "1E99999900").
     throw Error(std::string("scene file: malformed JSON: ") + e.what());
   }
   allowOnly(j, "", { "version", "channels", "arrays", "material", "boundary", "lights", "solver" });

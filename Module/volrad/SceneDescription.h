@@ -47,6 +47,11 @@ struct SolverSettings
   std::string method = "hierarchical"; ///< "hierarchical" or "dense"
   double epsilon = 1e-3;               ///< stopping threshold of the hierarchical solver
   long long maxIterations = 1000000;
+  /// Above this estimate of its memory [bytes] a solve refuses before it
+  /// allocates; 0: the solver's default (hierarchical: half the physical
+  /// memory; dense: 4 GiB). Not a scene-file key: the filter's MemoryBudget,
+  /// volrad's --memory-budget.
+  double memoryBudgetBytes = 0.0;
 };
 
 struct SceneDescription

@@ -19,6 +19,9 @@ Solution solve(const Scene& scene,
     DenseSolverOptions o;
     o.threads = threads;
     o.progress = progress;
+    if (settings.memoryBudgetBytes > 0.0) {
+      o.memoryLimitBytes = settings.memoryBudgetBytes;
+    }
     return solveDense(scene, o);
   }
   if (settings.method != "hierarchical") {
@@ -30,6 +33,7 @@ Solution solve(const Scene& scene,
     int(std::min<long long>(settings.maxIterations, std::numeric_limits<int>::max()));
   o.threads = threads;
   o.progress = progress;
+  o.memoryLimitBytes = settings.memoryBudgetBytes;
   return solveHierarchical(scene, o);
 }
 

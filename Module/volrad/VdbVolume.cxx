@@ -65,6 +65,18 @@ std::unique_ptr<openvdb::io::File> openFile(const std::string& path)
   return file;
 }
 
+/// Runs a read from an open file; OpenVDB's own errors (a truncated or
+/// corrupt file passes open() and fails here) become VolRad's, naming it.
+template<class Read>
+auto readFrom(const std::string& path, Read read) -> decltype(read())
+{
+  try {
+    return read();
+  } catch (const openvdb::Exception& e) {
+    throw Error("'" + path + "' is corrupt or truncated: " + e.what());
+  }
+}
+
 template<class GridT, int Components>
 void copyValues(const GridT& grid, const openvdb::CoordBBox& box, DenseVolume& out)
 {
@@ -119,7 +131,9 @@ std::vector<std::pair<std::string, std::string>> listVdbGrids(const std::string&
   auto file = openFile(path);
   std::vector<std::pair<std::string, std::string>> grids;
   for (auto it = file->beginName(); it != file->endName(); ++it) {
-    grids.emplace_back(it.gridName(), file->readGridMetadata(it.gridName())->valueType());
+    grids.emplace_back(it.gridName(), readFrom(path, [&] {
+                         return file->readGridMetadata(it.gridName())->valueType();
+                       }));
   }
   return grids;
 }
@@ -142,7 +156,7 @@ DenseVolume readVdbGrid(const std::string& path, const std::string& name, std::s
     }
     throw Error("'" + path + "' has no grid '" + gridName + "' (its grids: " + names + ")");
   }
-  const openvdb::GridBase::Ptr base = file->readGrid(gridName);
+  const openvdb::GridBase::Ptr base = readFrom(path, [&] { return file->readGrid(gridName); });
   const openvdb::math::Transform& xf = base->transform();
   const openvdb::Vec3d h = xf.voxelSize();
   if (!xf.isLinear()) {

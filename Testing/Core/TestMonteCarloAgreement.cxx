@@ -22,7 +22,11 @@ constexpr double kQuadratureTolerance = 0.02;
 struct Agreement
 {
   double rmsRelative = 0.0; ///< over voxels with G above 1% of the largest
-  double worstZ = 0.0;      ///< |diff| / (3 sigma_MC + tol G)
+  /// |diff| / (5 sigma_MC + tol G): over thousands of voxels a few Monte
+  /// Carlo errors pass 3 sigma by chance (about 14 in 5000), and which ones
+  /// depends on the compiler's floating point; past 5 sigma, one run in 300
+  /// would have one.
+  double worstZ = 0.0;
   double meanSigma = 0.0;   ///< mean relative MC standard error
 };
 
@@ -41,7 +45,7 @@ Agreement compare(const std::vector<double>& dense,
     a.rmsRelative += rel * rel;
     a.meanSigma += err[i] / dense[i];
     a.worstZ = std::max(
-      a.worstZ, std::abs(dense[i] - mc[i]) / (3.0 * err[i] + kQuadratureTolerance * dense[i]));
+      a.worstZ, std::abs(dense[i] - mc[i]) / (5.0 * err[i] + kQuadratureTolerance * dense[i]));
     ++n;
   }
   a.rmsRelative = std::sqrt(a.rmsRelative / n);

@@ -49,6 +49,16 @@ TEST(Scene, BadValuesAreNamed)
   s.grid.spacing[1] = 0.0;
   EXPECT_NE(errorOf(s).find("spacing[1] = 0"), std::string::npos) << errorOf(s);
 
+  // Spacing in [1e-9, 1e9] and at most 1e4 between axes (a spacing of 6e29,
+  // accepted before, gave NaN fields: found by Testing/Fuzz/FuzzSolver).
+  for (const Vec3& h : { Vec3(1, 6e29, 1), Vec3(1e-12, 1e-12, 1e-12), Vec3(1, 1, 2e4) }) {
+    s = cubeScene(4);
+    s.grid.spacing = h;
+    EXPECT_NE(errorOf(s).find("must lie in [1e-9, 1e9], its largest at most 1e4 times"),
+              std::string::npos)
+      << errorOf(s);
+  }
+
   s = cubeScene(4);
   s.grid.dims[2] = 0;
   EXPECT_NE(errorOf(s).find("empty"), std::string::npos) << errorOf(s);

@@ -105,6 +105,10 @@ TEST(SceneDescription, ErrorsNameTheKey)
     errorOf(R"({"version": 1, "material": {"preset": "ct-marble"}})").find("material.preset"),
     std::string::npos);
   EXPECT_NE(errorOf(R"({"version": 1, )").find("malformed JSON"), std::string::npos);
+  // A number past double's range (nlohmann's out_of_range, found by the fuzzer).
+  EXPECT_NE(errorOf(R"({"version": 1, "solver": {"epsilon": -10999E99999900}})")
+              .find("number overflow"),
+            std::string::npos);
   EXPECT_NE(errorOf(R"([1, 2])").find("must be an object"), std::string::npos);
 }
 

@@ -15,6 +15,7 @@
 #include "vtkXMLImageDataReader.h"
 
 #include "DensityImage.h"
+#include "VolradCommand.h"
 #include "volrad/VdbVolume.h"
 
 #include <gtest/gtest.h>
@@ -29,28 +30,16 @@
 
 namespace {
 
-struct CommandRun
-{
-  int code;
-  std::string output;
-};
+using volrad::test::CommandRun;
 
-/// Runs volrad with `args` (after `prefix`, e.g. "env -u DISPLAY ").
 CommandRun run(const std::string& args, const std::string& prefix = "")
 {
-  // One log per test: ctest runs the tests in parallel.
-  const std::string log = std::string(VOLRAD_TEST_OUTPUT_DIR) + "/volrad-" +
-                          ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".log";
-  const int status = std::system(
-    (prefix + std::string(VOLRAD_COMMAND) + " " + args + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return { WEXITSTATUS(status), text };
+  return volrad::test::runVolrad(args, prefix);
 }
 
 bool exists(const std::string& path)
 {
-  return bool(std::ifstream(path));
+  return volrad::test::fileExists(path);
 }
 
 const std::string kData = VOLRAD_DATA_DIR;

@@ -73,20 +73,29 @@ const char* kScene = R"({"version": 1, "solver": {"method": "dense"},
   "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "irradiance": 2}],
   "boundary": {"zmin": {"type": "wall", "reflectance": 0.5}}})";
 
-std::vector<float> runFilter(vtkImageData* image, const char* scene, std::string* error = nullptr)
+/// Updates the filter; returns the error messages it and its executive gave.
+std::string updateCollectingErrors(vtkVolumetricRadiosity* f)
 {
-  vtkNew<vtkVolumetricRadiosity> f;
-  f->SetInputData(image);
-  f->SetSceneJSON(scene);
   std::string messages;
   vtkNew<vtkCallbackCommand> cb;
   cb->SetClientData(&messages);
   cb->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
     *static_cast<std::string*>(self) += static_cast<const char*>(data);
   });
-  f->AddObserver(vtkCommand::ErrorEvent, cb);
-  f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
+  const unsigned long a = f->AddObserver(vtkCommand::ErrorEvent, cb);
+  const unsigned long b = f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
   f->Update();
+  f->RemoveObserver(a);
+  f->GetExecutive()->RemoveObserver(b);
+  return messages;
+}
+
+std::vector<float> runFilter(vtkImageData* image, const char* scene, std::string* error = nullptr)
+{
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(scene);
+  const std::string messages = updateCollectingErrors(f);
   if (error) {
     *error = messages;
   }
@@ -473,4 +482,69 @@ TEST(VolumetricRadiosity, SceneSettingsAsPropertiesMatchTheSceneFile)
   f->RemoveAllFaceSettings();
   f->Update();
   EXPECT_NE(volrad::test::incidentRadiation(f->GetOutput()), reference);
+}
+
+TEST(VolumetricRadiosity, OneThreadIsBitIdenticalAndManyThreadsAgreeWithIt)
+{
+  // Both solvers; the hierarchical one on a heterogeneous 8x7x6 medium with
+  // a wall, so that link refinement, far field and shooting all run.
+  auto image = makeImage<vtkFloatArray>();
+  for (const char* method : { "hierarchical", "dense" }) {
+    auto run = [&](int threads) {
+      vtkNew<vtkVolumetricRadiosity> f;
+      f->SetInputData(image);
+      f->SetSceneJSON(kScene);
+      f->SetSolverMethod(method);
+      f->SetNumberOfThreads(threads);
+      f->Update();
+      std::vector<std::vector<float>> fields;
+      for (const char* name :
+           { "IncidentRadiation", "IsotropicRadiosity", "DiffuseRadiosity", "AbsorbedPower" }) {
+        auto* a = vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray(name));
+        EXPECT_NE(a, nullptr) << name;
+        fields.emplace_back(a ? std::vector<float>(a->GetPointer(0),
+                                                   a->GetPointer(0) + a->GetNumberOfValues())
+                              : std::vector<float>());
+      }
+      return fields;
+    };
+    const auto one = run(1);
+    ASSERT_FALSE(one[0].empty()) << method;
+    EXPECT_EQ(run(1), one) << method << ": two single-threaded runs differ";
+    // More threads than cores: the work is cut differently.
+    for (int threads : { 0, 4 }) {
+      const auto many = run(threads);
+      ASSERT_EQ(many.size(), one.size());
+      for (std::size_t k = 0; k < one.size(); ++k) {
+        ASSERT_EQ(many[k].size(), one[k].size());
+        for (std::size_t i = 0; i < one[k].size(); ++i) {
+          EXPECT_NEAR(many[k][i], one[k][i], 1e-6 * std::abs(one[k][i]) + 1e-30)
+            << method << ", " << threads << " threads, field " << k << ", value " << i;
+        }
+      }
+    }
+  }
+}
+
+TEST(VolumetricRadiosity, MemoryBudgetRefusesBeforeSolvingWithBothFigures)
+{
+  auto image = makeImage<vtkFloatArray>();
+  for (const char* method : { "hierarchical", "dense" }) {
+    vtkNew<vtkVolumetricRadiosity> f;
+    f->SetInputData(image);
+    f->SetSceneJSON(kScene);
+    f->SetSolverMethod(method);
+    f->SetMemoryBudget(0.01); // MiB: less than the voxels alone need
+    const std::string messages = updateCollectingErrors(f);
+    EXPECT_TRUE(volrad::test::incidentRadiation(f->GetOutput()).empty()) << method;
+    EXPECT_NE(messages.find("over its memory budget of 0.01 MiB"), std::string::npos)
+      << method << ": " << messages;
+    EXPECT_NE(messages.find(" MiB"), messages.rfind(" MiB")) << "both figures: " << messages;
+    // The default budget (0) solves it.
+    f->SetMemoryBudget(0.0);
+    f->Update();
+    EXPECT_EQ(volrad::test::incidentRadiation(f->GetOutput()).size(),
+              std::size_t(image->GetNumberOfPoints()))
+      << method;
+  }
 }

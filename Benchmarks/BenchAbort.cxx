@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// How soon a solve stops when asked to (issue 8: within a second). A watcher
+// thread asks for the stop after a delay, as a GUI's abort button would,
+// while the solve runs on the main thread; the figure is the time from the
+// request to the solve's return (volrad::Aborted), printed with the
+// progress the solve had reported, for several delays so that the request
+// falls into every phase (near field, link refinement, far field, shooting):
+//   BenchAbort [--scene phantom|cloud|cube] [--method hierarchical|dense]
+//              [--threads N] [N [DELAY_S ...]]
+// Default: the phantom at 32^3, hierarchical, delays 0.5 1 2 4 8 16 32 64 s.
+#include "BenchmarkScenes.h"
+
+#include "volrad/Solve.h"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace volrad;
+using Clock = std::chrono::steady_clock;
+
+int main(int argc, char** argv)
+{
+  std::string sceneName = "phantom";
+  SolverSettings settings;
+  int threads = 0;
+  int n = 32;
+  std::vector<double> delays;
+  bool haveN = false;
+  for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--scene") && i + 1 < argc) {
+      sceneName = argv[++i];
+    } else if (!std::strcmp(argv[i], "--method") && i + 1 < argc) {
+      settings.method = argv[++i];
+    } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
+      threads = std::atoi(argv[++i]);
+    } else if (!haveN) {
+      n = std::atoi(argv[i]);
+      haveN = true;
+    } else {
+      delays.push_back(std::atof(argv[i]));
+    }
+  }
+  if (delays.empty()) {
+    delays = { 0.5, 1, 2, 4, 8, 16, 32, 64 };
+  }
+  const Scene scene = bench::benchmarkScene(sceneName, n);
+  std::printf("%s %d^3, %s solver: delay [s] | progress at the request | stopped after [s]\n",
+              sceneName.c_str(), n, settings.method.c_str());
+  double worst = 0.0;
+  for (double delay : delays) {
+    std::atomic<bool> stop{ false };
+    std::atomic<double> lastProgress{ 0.0 };
+    Clock::time_point requested;
+    std::atomic<bool> done{ false };
+    const Clock::time_point start = Clock::now();
+    std::thread watcher([&] {
+      while (!done && Clock::now() - start < std::chrono::duration<double>(delay)) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+      requested = Clock::now();
+      stop = true;
+    });
+    bool aborted = false;
+    double progressAtRequest = -1.0;
+    try {
+      solve(scene, settings, threads, [&](double f) {
+        if (!stop) {
+          lastProgress = f;
+        } else if (progressAtRequest < 0.0) {
+          progressAtRequest = lastProgress;
+        }
+        return !stop;
+      });
+    } catch (const Aborted&) {
+      aborted = true;
+    } catch (const Error& e) {
+      done = true;
+      watcher.join();
+      std::fprintf(stderr, "BenchAbort: %s\n", e.what());
+      return 1;
+    }
+    const Clock::time_point end = Clock::now();
+    done = true;
+    watcher.join();
+    if (!aborted) {
+      std::printf("%8.1f | finished before the request (%.1f s)\n", delay,
+                  std::chrono::duration<double>(end - start).count());
+      break;
+    }
+    const double latency = std::chrono::duration<double>(end - requested).count();
+    worst = std::max(worst, latency);
+    std::printf("%8.1f | %5.1f%% | %.3f\n", delay, 100.0 * progressAtRequest, latency);
+    std::fflush(stdout);
+  }
+  std::printf("longest time to stop: %.3f s\n", worst);
+  return 0;
+}
