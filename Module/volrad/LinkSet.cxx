@@ -378,15 +378,20 @@ LinkSet refineLinks(const ClusterTree& tree,
   if (tree.size() > Index(std::numeric_limits<std::int32_t>::max())) {
     throw Error("the cluster tree is too large for 32-bit link indices");
   }
+  // The steps below take seconds at millions of links: a stop request is
+  // heard between them.
+  progress.report(0.92);
   const std::size_t m = all.size();
   all.resize(2 * m);
   for (std::size_t k = 0; k < m; ++k) {
     all[m + k] = { all[k].b, all[k].a, all[k].gamma, all[k].level };
   }
   // Receiver = b.
+  progress.report(0.94);
   tbb::parallel_sort(all.begin(), all.end(), [](const Accepted& x, const Accepted& y) {
     return x.b != y.b ? x.b < y.b : x.a < y.a;
   });
+  progress.report(0.98);
   out.start.assign(tree.size() + 1, 0);
   out.source.resize(all.size());
   out.gamma.resize(all.size());

@@ -226,9 +226,7 @@ NearField computeNearField(const Scene& scene,
 
   // Raw voxel rows: full-full into the stencil, the rest as triplets.
   TripletLists extras;
-  const Index block = std::max<Index>(4096, nv / 50);
-  for (Index b0 = 0; b0 < nv; b0 += block) {
-    const Index b1 = std::min(nv, b0 + block);
+  progress.sub(0.05, 0.8).forBlocks(nv, 4096, 50, [&](Index b0, Index b1) {
     tbb::parallel_for(
       tbb::blocked_range<Index>(b0, b1), [&](const tbb::blocked_range<Index>& range) {
         std::vector<double> row(width);
@@ -290,8 +288,7 @@ NearField computeNearField(const Scene& scene,
           local.resize(out_);
         }
       });
-    progress.report(0.05 + 0.75 * double(b1) / double(nv));
-  }
+  });
 
   // Patch rows, cut at the box around the voxel behind each patch.
   const Index np = el.patchCount;
@@ -416,47 +413,44 @@ NearField computeNearField(const Scene& scene,
   const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
   // In blocks, with a progress report (and a chance to abort) after each:
   // the empty voxels around a head or a cloud are many.
-  const Index viewBlock = std::max<Index>(4096, nv / 20);
-  for (Index b0 = 0; b0 < nv; b0 += viewBlock) {
-  const Index b1 = std::min(nv, b0 + viewBlock);
-  tbb::parallel_for(b0, b1, [&](Index v) {
-    if (el.full[v] >= 0) {
-      return;
-    }
-    const auto c = g.ijk(v);
-    bool seesSomething = false;
-    for (int dz = -r; dz <= r && !seesSomething; ++dz) {
-      for (int dy = -r; dy <= r && !seesSomething; ++dy) {
-        for (int dx = -r; dx <= r && !seesSomething; ++dx) {
-          const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
-          if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
-            continue;
+  progress.sub(0.9, 0.99).forBlocks(nv, 4096, 20, [&](Index b0, Index b1) {
+    tbb::parallel_for(b0, b1, [&](Index v) {
+      if (el.full[v] >= 0) {
+        return;
+      }
+      const auto c = g.ijk(v);
+      bool seesSomething = false;
+      for (int dz = -r; dz <= r && !seesSomething; ++dz) {
+        for (int dy = -r; dy <= r && !seesSomething; ++dy) {
+          for (int dx = -r; dx <= r && !seesSomething; ++dx) {
+            const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
+            if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
+              continue;
+            }
+            // An element, or a boundary voxel: the patches behind it are near.
+            seesSomething = el.full[g.index(i, j, k)] >= 0 || i == 0 || j == 0 || k == 0 ||
+                            i == g.dims[0] - 1 || j == g.dims[1] - 1 || k == g.dims[2] - 1;
           }
-          // An element, or a boundary voxel: the patches behind it are near.
-          seesSomething = el.full[g.index(i, j, k)] >= 0 || i == 0 || j == 0 || k == 0 ||
-                          i == g.dims[0] - 1 || j == g.dims[1] - 1 || k == g.dims[2] - 1;
         }
       }
-    }
-    if (!seesSomething) {
-      return;
-    }
-    std::map<Index, double> row;
-    gatherVoxelView(medium,
-                    el,
-                    v,
-                    viewDirs,
-                    opt.quadrature,
-                    false,
-                    neighbourhood(g, v, r),
-                    [&](Index e, double p, bool) { row[e] += p; });
-    auto& local = views.local();
-    for (const auto& [e, w] : row) {
-      local.push_back({ v, e, w });
-    }
+      if (!seesSomething) {
+        return;
+      }
+      std::map<Index, double> row;
+      gatherVoxelView(medium,
+                      el,
+                      v,
+                      viewDirs,
+                      opt.quadrature,
+                      false,
+                      neighbourhood(g, v, r),
+                      [&](Index e, double p, bool) { row[e] += p; });
+      auto& local = views.local();
+      for (const auto& [e, w] : row) {
+        local.push_back({ v, e, w });
+      }
+    });
   });
-  progress.report(0.9 + 0.09 * double(b1) / double(nv));
-  }
   const std::vector<Triplet> viewRows = gatherTriplets(views);
   toRows(viewRows, nv, out.viewStart, out.viewColumn, out.viewValue);
   progress.report(1.0);

@@ -5,6 +5,8 @@
 
 #include "volrad/Error.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <functional>
 
 namespace volrad {
@@ -38,6 +40,20 @@ public:
   ProgressRange sub(double begin, double end) const
   {
     return ProgressRange(cb_, begin_ + (end_ - begin_) * begin, begin_ + (end_ - begin_) * end);
+  }
+  /// Calls body(begin, end) on consecutive blocks of [0, n), about `blocks`
+  /// of them and none under `minBlock` items, reporting after each how far
+  /// it got: a long (parallel) pass that a stop request interrupts between
+  /// blocks.
+  template<class Body>
+  void forBlocks(std::int64_t n, std::int64_t minBlock, std::int64_t blocks, Body&& body) const
+  {
+    const std::int64_t size = std::max(minBlock, n / blocks);
+    for (std::int64_t b0 = 0; b0 < n; b0 += size) {
+      const std::int64_t b1 = std::min(n, b0 + size);
+      body(b0, b1);
+      report(double(b1) / double(n));
+    }
   }
 
 private:
