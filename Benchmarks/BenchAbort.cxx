@@ -6,12 +6,17 @@
 // progress the solve had reported, for several delays so that the request
 // falls into every phase (near field, link refinement, far field, shooting):
 //   BenchAbort [--scene phantom|cloud|cube] [--method hierarchical|dense]
-//              [--threads N] [N [DELAY_S ...]]
+//              [--threads N] [--gaps] [N [DELAY_S ...]]
 // Default: the phantom at 32^3, hierarchical, delays 0.5 1 2 4 8 16 32 64 s.
+// --gaps instead runs one whole solve and prints the longest times between
+// two progress reports (where a stop is heard), with the fractions they lay
+// between: the bound on the time to stop anywhere in the solve, not only at
+// the sampled delays.
 #include "BenchmarkScenes.h"
 
 #include "volrad/Solve.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -31,7 +36,7 @@ int main(int argc, char** argv)
   int threads = 0;
   int n = 32;
   std::vector<double> delays;
-  bool haveN = false;
+  bool haveN = false, gaps = false;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--scene") && i + 1 < argc) {
       sceneName = argv[++i];
@@ -39,6 +44,8 @@ int main(int argc, char** argv)
       settings.method = argv[++i];
     } else if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--gaps")) {
+      gaps = true;
     } else if (!haveN) {
       n = std::atoi(argv[i]);
       haveN = true;
@@ -50,8 +57,51 @@ int main(int argc, char** argv)
     delays = { 0.5, 1, 2, 4, 8, 16, 32, 64 };
   }
   const Scene scene = bench::benchmarkScene(sceneName, n);
+  if (gaps) {
+    struct Gap
+    {
+      double seconds, from, to;
+    };
+    std::vector<Gap> all;
+    Clock::time_point last = Clock::now();
+    double lastFraction = 0.0;
+    auto gap = [&](double f) {
+      const Clock::time_point now = Clock::now();
+      all.push_back({ std::chrono::duration<double>(now - last).count(), lastFraction, f });
+      last = now;
+      lastFraction = f;
+    };
+    const Clock::time_point start = Clock::now();
+    try {
+      solve(scene, settings, threads, [&](double f) {
+        gap(f);
+        return true;
+      });
+    } catch (const Error& e) {
+      std::fprintf(stderr, "BenchAbort: %s\n", e.what());
+      return 1;
+    }
+    gap(1.0); // from the last report to the return
+    std::sort(
+      all.begin(), all.end(), [](const Gap& a, const Gap& b) { return a.seconds > b.seconds; });
+    std::printf("%s %d^3, %s solver: %zu progress reports in %.1f s; longest gaps between them:\n",
+                sceneName.c_str(),
+                n,
+                settings.method.c_str(),
+                all.size() - 1,
+                std::chrono::duration<double>(last - start).count());
+    for (std::size_t i = 0; i < std::min<std::size_t>(8, all.size()); ++i) {
+      std::printf("  %.3f s  between %7.3f%% and %7.3f%%\n",
+                  all[i].seconds,
+                  100.0 * all[i].from,
+                  100.0 * all[i].to);
+    }
+    return 0;
+  }
   std::printf("%s %d^3, %s solver: delay [s] | progress at the request | stopped after [s]\n",
-              sceneName.c_str(), n, settings.method.c_str());
+              sceneName.c_str(),
+              n,
+              settings.method.c_str());
   double worst = 0.0;
   for (double delay : delays) {
     std::atomic<bool> stop{ false };
@@ -89,7 +139,8 @@ int main(int argc, char** argv)
     done = true;
     watcher.join();
     if (!aborted) {
-      std::printf("%8.1f | finished before the request (%.1f s)\n", delay,
+      std::printf("%8.1f | finished before the request (%.1f s)\n",
+                  delay,
                   std::chrono::duration<double>(end - start).count());
       break;
     }

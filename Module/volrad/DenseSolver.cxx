@@ -183,8 +183,8 @@ Solution solveDense(const Scene& scene, const DenseSolverOptions& options)
       sol.stats.quadratureError = std::max(sol.stats.quadratureError, ex->quadratureError);
     }
     DirectLighting dl;
-    arena.execute([&] { dl = computeDirectLight(scene, ch, options.quadrature); });
-    chProgress.report(0.85);
+    arena.execute(
+      [&] { dl = computeDirectLight(scene, ch, options.quadrature, chProgress.sub(0.8, 0.85)); });
     const ExchangeElements& el = ex->elements;
     const ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
     LinearSolveResult lin;

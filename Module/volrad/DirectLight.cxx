@@ -70,22 +70,35 @@ void followRay(const Scene& scene,
   }
 }
 
-/// Runs f(begin, end, tally) over [0, count) in a fixed number of chunks,
-/// in parallel, and merges the chunks' tallies in order: the sums do not
-/// depend on thread scheduling.
+/// Rays traced between two progress reports (a few tenths of a second).
+constexpr Index kRaysPerWave = Index(1) << 18;
+
+/// Runs f(begin, end, tally) over [0, count) in waves of `perWave` items,
+/// each wave in a fixed number of chunks in parallel, reporting progress (a
+/// chance to stop) after each wave. Chunk i of every wave adds into tally i
+/// and the tallies are merged in order at the end: the sums do not depend
+/// on thread scheduling.
 template<class F>
-void forChunks(const Grid& g, Index count, RayTally& total, F&& f)
+void forChunks(const Grid& g,
+               Index count,
+               Index perWave,
+               RayTally& total,
+               const ProgressRange& progress,
+               F&& f)
 {
-  // A fixed number: each chunk holds a full-size tally while it runs.
-  const Index chunks = std::min<Index>(count, 16);
-  if (chunks <= 0) {
-    return;
+  // A fixed number: each chunk holds a full-size tally.
+  const Index chunks = std::min<Index>(std::min(count, perWave), 16);
+  std::vector<std::unique_ptr<RayTally>> partial(std::max<Index>(0, chunks));
+  for (Index w0 = 0; w0 < count; w0 += perWave) {
+    const Index n = std::min(count - w0, perWave);
+    tbb::parallel_for(Index(0), chunks, [&](Index ci) {
+      if (!partial[ci]) {
+        partial[ci] = std::make_unique<RayTally>(g);
+      }
+      f(w0 + ci * n / chunks, w0 + (ci + 1) * n / chunks, *partial[ci]);
+    });
+    progress.report(double(w0 + n) / double(count));
   }
-  std::vector<std::unique_ptr<RayTally>> partial(chunks);
-  tbb::parallel_for(Index(0), chunks, [&](Index ci) {
-    partial[ci] = std::make_unique<RayTally>(g);
-    f(ci * count / chunks, (ci + 1) * count / chunks, *partial[ci]);
-  });
   for (const auto& p : partial) {
     total.add(*p);
   }
@@ -101,7 +114,8 @@ void addDirectional(const Scene& scene,
                     const DirectionalLight& light,
                     int c,
                     const QuadratureSettings& q,
-                    RayTally& tally)
+                    RayTally& tally,
+                    const ProgressRange& progress)
 {
   const Grid& g = scene.grid;
   const Vec3 d = light.direction.stableNormalized();
@@ -119,20 +133,25 @@ void addDirectional(const Scene& scene,
     const auto ax = faceAxesInPlane(f);
     const double w = E * cosIn * g.patchArea(f) / double(s * s);
     const Index first = g.facePatchOffset(f);
-    forChunks(g, g.facePatchCount(f), tally, [&](Index begin, Index end, RayTally& local) {
-      for (Index p = first + begin; p < first + end; ++p) {
-        const Vec3 lower = g.patchLower(p);
-        for (int b = 0; b < s; ++b) {
-          for (int a = 0; a < s; ++a) {
-            Vec3 x = lower;
-            x[ax[0]] += (a + 0.5) / s * g.spacing[ax[0]];
-            x[ax[1]] += (b + 0.5) / s * g.spacing[ax[1]];
-            followRay(scene, kt, x, d, w, local);
-            local.entering += w;
-          }
-        }
-      }
-    });
+    forChunks(g,
+              g.facePatchCount(f),
+              std::max<Index>(1, kRaysPerWave / (s * s)),
+              tally,
+              progress.sub(fi / double(kFaceCount), (fi + 1) / double(kFaceCount)),
+              [&](Index begin, Index end, RayTally& local) {
+                for (Index p = first + begin; p < first + end; ++p) {
+                  const Vec3 lower = g.patchLower(p);
+                  for (int b = 0; b < s; ++b) {
+                    for (int a = 0; a < s; ++a) {
+                      Vec3 x = lower;
+                      x[ax[0]] += (a + 0.5) / s * g.spacing[ax[0]];
+                      x[ax[1]] += (b + 0.5) / s * g.spacing[ax[1]];
+                      followRay(scene, kt, x, d, w, local);
+                      local.entering += w;
+                    }
+                  }
+                }
+              });
   }
 }
 
@@ -142,7 +161,8 @@ void addPoint(const Scene& scene,
               int c,
               const QuadratureSettings& q,
               std::size_t lightIndex,
-              RayTally& tally)
+              RayTally& tally,
+              const ProgressRange& progress)
 {
   const Grid& g = scene.grid;
   const double I = light.intensity[c];
@@ -176,7 +196,7 @@ void addPoint(const Scene& scene,
   Rng rotRng(q.seed ^ 0x706f696e74ULL, lightIndex);
   const Eigen::Matrix3d spin =
     frame * Eigen::AngleAxisd(2 * kPi * rotRng.uniform(), Vec3::UnitZ()).toRotationMatrix();
-  forChunks(g, rays, tally, [&](Index begin, Index end, RayTally& local) {
+  forChunks(g, rays, kRaysPerWave, tally, progress, [&](Index begin, Index end, RayTally& local) {
     for (Index i = begin; i < end; ++i) {
       // Equal-solid-angle spiral in the cone.
       const double cosT = 1.0 - (1.0 - cosMax) * (i + 0.5) / double(rays);
@@ -199,16 +219,23 @@ void addPoint(const Scene& scene,
 
 } // namespace
 
-DirectLighting computeDirectLight(const Scene& scene, int channel, const QuadratureSettings& q)
+DirectLighting computeDirectLight(const Scene& scene,
+                                  int channel,
+                                  const QuadratureSettings& q,
+                                  const ProgressRange& progress)
 {
   const Grid& g = scene.grid;
   const std::vector<double> kt = scene.extinction(channel);
   RayTally tally(g);
-  for (const auto& l : scene.directionalLights) {
-    addDirectional(scene, kt, l, channel, q, tally);
+  const std::size_t nd = scene.directionalLights.size(), lights = nd + scene.pointLights.size();
+  auto part = [&](std::size_t i) {
+    return progress.sub(double(i) / double(lights), double(i + 1) / double(lights));
+  };
+  for (std::size_t i = 0; i < nd; ++i) {
+    addDirectional(scene, kt, scene.directionalLights[i], channel, q, tally, part(i));
   }
   for (std::size_t i = 0; i < scene.pointLights.size(); ++i) {
-    addPoint(scene, kt, scene.pointLights[i], channel, q, i, tally);
+    addPoint(scene, kt, scene.pointLights[i], channel, q, i, tally, part(nd + i));
   }
   DirectLighting out;
   out.track = std::move(tally.track);
@@ -243,12 +270,13 @@ std::vector<std::string> lightsWallsKeepOut(const Scene& scene)
       for (int side = 0; side < 2; ++side) {
         const bool beyond = side == 0 ? p[a] < lo[a] : p[a] > hi[a];
         outside = outside || beyond;
-        seesOpenFace = seesOpenFace || (beyond && faceIsOpen(scene, static_cast<Face>(2 * a + side)));
+        seesOpenFace =
+          seesOpenFace || (beyond && faceIsOpen(scene, static_cast<Face>(2 * a + side)));
       }
     }
     if (outside && !seesOpenFace) {
-      messages.push_back("point light " + std::to_string(i) + " at (" + std::to_string(p[0]) + ", " +
-                         std::to_string(p[1]) + ", " + std::to_string(p[2]) +
+      messages.push_back("point light " + std::to_string(i) + " at (" + std::to_string(p[0]) +
+                         ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) +
                          ") is outside the volume behind walls: it lights nothing");
     }
   }

@@ -10,6 +10,7 @@
 /// (exact along each ray, also where kappa_t = 0).
 #pragma once
 
+#include "volrad/Progress.h"
 #include "volrad/Quadrature.h"
 #include "volrad/Scene.h"
 
@@ -26,7 +27,11 @@ struct DirectLighting
   double entering = 0.0;          ///< power that entered the domain [W]
 };
 
-DirectLighting computeDirectLight(const Scene& scene, int channel, const QuadratureSettings& q);
+/// `progress` hears after every million rays or so (and may abort).
+DirectLighting computeDirectLight(const Scene& scene,
+                                  int channel,
+                                  const QuadratureSettings& q,
+                                  const ProgressRange& progress = {});
 
 /// One message per light that walls keep out entirely: a directional light
 /// whose every entering face is a wall, a point light outside the volume

@@ -18,14 +18,24 @@ Vec3 unitNormal(const Scene& s, Index v)
 }
 
 template<class F>
-void forEach(Index n, F&& f)
+void forEachIn(Index begin, Index end, F&& f)
 {
-  tbb::parallel_for(tbb::blocked_range<Index>(0, n, 2048), [&](const auto& r) {
+  tbb::parallel_for(tbb::blocked_range<Index>(begin, end, 2048), [&](const auto& r) {
     for (Index i = r.begin(); i != r.end(); ++i) {
       f(i);
     }
   });
 }
+
+template<class F>
+void forEach(Index n, F&& f)
+{
+  forEachIn(0, n, f);
+}
+
+/// Links in the gather's blocks between progress reports: the first, the
+/// most (tens of ns each).
+constexpr std::int64_t kFirstLinks = 1 << 18, kMaxLinks = 1 << 22;
 
 /// f(node) for every voxel node and patch node of one level, in parallel.
 template<class F>
@@ -74,17 +84,25 @@ FarField::FarField(const Scene& scene,
   std::vector<double> received(n);
   for (int step = 0; step < kBalanceSteps; ++step) {
     std::fill(received.begin(), received.end(), 0.0);
-    gather(inScale_.data(), received.data(), nullptr, false);
+    gather(
+      inScale_.data(),
+      received.data(),
+      nullptr,
+      false,
+      progress.sub(double(step) / (kBalanceSteps + 1), double(step + 1) / (kBalanceSteps + 1)));
     for (Index e = 0; e < partition; ++e) {
       if (received[e] > 0.0) {
         const double ratio = std::max(0.0, near.far[e]) / received[e];
         inScale_[e] = std::clamp(std::sqrt(inScale_[e] * ratio), 0.5, 2.0);
       }
     }
-    progress.report(double(step + 1) / (kBalanceSteps + 1));
   }
   std::fill(received.begin(), received.end(), 0.0);
-  gather(inScale_.data(), received.data(), nullptr, false);
+  gather(inScale_.data(),
+         received.data(),
+         nullptr,
+         false,
+         progress.sub(double(kBalanceSteps) / (kBalanceSteps + 1), 1.0));
   for (Index e = 0; e < n; ++e) {
     if (e < partition) {
       scale_[e] = inScale_[e];
@@ -99,15 +117,22 @@ FarField::FarField(const Scene& scene,
   }
 }
 
-void FarField::apply(const double* x, double* y, double* viewOut) const
+void FarField::apply(const double* x,
+                     double* y,
+                     double* viewOut,
+                     const ProgressRange& progress) const
 {
   scaled_.resize(el_.size());
   forEach(el_.size(), [&](Index e) { scaled_[e] = inScale_[e] * x[e]; });
-  gather(scaled_.data(), y, viewOut, true);
+  gather(scaled_.data(), y, viewOut, true, progress);
   forEach(el_.size(), [&](Index e) { y[e] += self_[e] * x[e]; });
 }
 
-void FarField::gather(const double* x, double* y, double* viewOut, bool normalised) const
+void FarField::gather(const double* x,
+                      double* y,
+                      double* viewOut,
+                      bool normalised,
+                      const ProgressRange& progress) const
 {
   const Grid& g = tree_.grid(0);
   const Index nv = g.voxelCount(), np = g.patchCount();
@@ -150,8 +175,8 @@ void FarField::gather(const double* x, double* y, double* viewOut, bool normalis
     }
   }
 
-  // Gather over the links, per receiving node.
-  forEach(tree_.size(), [&](Index b) {
+  // Gather over the links into receiving node b.
+  auto gatherInto = [&](Index b) {
     const bool patchB = tree_.isPatch(b), leafB = tree_.isLeaf(b);
     const bool frontB = fronts_ && !patchB && leafB && el_.front[b] >= 0;
     Vec3 cb = Vec3::Zero(), nb = Vec3::Zero();
@@ -211,7 +236,25 @@ void FarField::gather(const double* x, double* y, double* viewOut, bool normalis
         leafFront_[b] = front;
       }
     }
+  };
+
+  // Gather over the links, per receiving node, in blocks of links with a
+  // progress report (a stop request) after each.
+  const auto& start = links_.start;
+  const Index nodes = tree_.size();
+  progress.forBlocks(start[nodes], kFirstLinks, kMaxLinks, [&](std::int64_t k0, std::int64_t k1) {
+    // The nodes whose links begin in [k0, k1); the last block takes the
+    // trailing nodes without links.
+    const Index b0 = std::lower_bound(start.begin(), start.end() - 1, Index(k0)) - start.begin();
+    const Index b1 =
+      k1 == start[nodes]
+        ? nodes
+        : std::lower_bound(start.begin(), start.end() - 1, Index(k1)) - start.begin();
+    forEachIn(b0, b1, [&](Index b) { gatherInto(b); });
   });
+  if (start[nodes] == 0) {
+    forEach(nodes, [&](Index b) { gatherInto(b); });
+  }
 
   // Push: every node hands what it received to its children.
   for (int l = L - 1; l >= 1; --l) {

@@ -38,7 +38,12 @@ public:
 
   /// y[e] += far collided power of element e for element radiosities x.
   /// With viewOut, also the far G of voxels that are not elements.
-  void apply(const double* x, double* y, double* viewOut = nullptr) const;
+  /// `progress` hears between blocks of the sweep over the links (a second
+  /// at tens of millions of links) and may abort.
+  void apply(const double* x,
+             double* y,
+             double* viewOut = nullptr,
+             const ProgressRange& progress = {}) const;
   /// The balancing D, per element (front sides: their row's scale).
   const std::vector<double>& scale() const { return scale_; }
   /// What each element's self exchange gained to make its row exact.
@@ -46,7 +51,11 @@ public:
   std::size_t bytes() const;
 
 private:
-  void gather(const double* x, double* y, double* viewOut, bool normalised) const;
+  void gather(const double* x,
+              double* y,
+              double* viewOut,
+              bool normalised,
+              const ProgressRange& progress) const;
 
   const Scene& scene_;
   const ClusterTree& tree_;

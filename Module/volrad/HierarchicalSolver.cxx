@@ -14,6 +14,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -79,11 +80,12 @@ struct ChannelOperator
   Vector denominator;            // 1 - c S_self
   const FarField* far = nullptr; // shared by the channels of one geometry
 
-  Vector apply(const Vector& x) const
+  /// `progress` hears within the far field's sweep (and may abort).
+  Vector apply(const Vector& x, const ProgressRange& progress) const
   {
     Vector y = Vector::Zero(x.size());
     near.apply(scene.grid, x.data(), y.data(), true);
-    far->apply(x.data(), y.data());
+    far->apply(x.data(), y.data(), nullptr, progress);
     tbb::parallel_for(Index(0), Index(y.size()), [&](Index e) {
       y[e] = sys.c[e] > 0.0 ? sys.c[e] * y[e] / denominator[e] : 0.0;
     });
@@ -156,6 +158,17 @@ struct IterationState
   }
   long long iterations = 0, shots = 0;
   bool converged = false;
+  /// Progress of the iterations: how far the change fell from the first
+  /// one towards epsilon, on a log scale.
+  double first = -1.0, reported = 0.0;
+  void reportChange(double change, double epsilon, const ProgressRange& progress)
+  {
+    first = first < 0.0 ? change : first;
+    if (first > epsilon && change > 0.0) {
+      reported = std::clamp(std::log(first / change) / std::log(first / epsilon), reported, 1.0);
+    }
+    progress.report(reported);
+  }
 };
 
 /// Sweeps of shooting; returns false when they stall (Automatic mode).
@@ -168,6 +181,7 @@ bool shoot(const ChannelOperator& op,
            const ProgressRange& progress)
 {
   double previous = s.change(s.dx), ratio = 0.0;
+  s.reportChange(previous, epsilon, progress);
   int slow = 0;
   while (s.iterations < maxIterations) {
     // What is still unshot, and what the sweeps it will take still add
@@ -179,14 +193,12 @@ bool shoot(const ChannelOperator& op,
     }
     s.shots +=
       (long long)reduceSum(s.dx.size(), [&](Index e) { return s.dx[e] != 0.0 ? 1.0 : 0.0; });
-    s.dx = op.apply(s.dx);
+    s.dx = op.apply(s.dx, progress.sub(s.reported, s.reported));
     s.x += s.dx;
     ++s.iterations;
     const double now = s.change(s.dx);
     report.dQmaxHistory.push_back(now);
-    progress.report(std::min(1.0,
-                             std::log(std::max(now, 1e-300) / std::max(previous, 1e-300)) /
-                               std::log(std::max(epsilon, 1e-300))));
+    s.reportChange(now, epsilon, progress);
     ratio = previous > 0.0 ? now / previous : 0.0;
     // Stalling: fewer than a tenth of the unshot light goes per sweep.
     slow = ratio > 0.9 ? slow + 1 : 0;
@@ -205,9 +217,12 @@ void krylov(const ChannelOperator& op,
             IterationState& s,
             double epsilon,
             int maxIterations,
-            HierarchicalReport& report)
+            HierarchicalReport& report,
+            const ProgressRange& progress)
 {
-  auto A = [&](const Vector& v) -> Vector { return v - op.apply(v); };
+  auto A = [&](const Vector& v) -> Vector {
+    return v - op.apply(v, progress.sub(s.reported, s.reported));
+  };
   auto dot = [](const Vector& a, const Vector& b) {
     return reduceSum(a.size(), [&](Index i) { return a[i] * b[i]; });
   };
@@ -219,6 +234,7 @@ void krylov(const ChannelOperator& op,
   while (s.iterations < maxIterations) {
     const double res = s.change(r);
     report.dQmaxHistory.push_back(res);
+    s.reportChange(res, epsilon, progress);
     if (res <= epsilon) {
       s.converged = true;
       break;
@@ -391,7 +407,7 @@ Solution solveHierarchical(const Scene& scene,
       // Each channel's equations (Channel holds references into itself: not moved).
       std::vector<std::unique_ptr<Channel>> channels;
       for (const int ch : chans) {
-        DirectLighting dl = computeDirectLight(scene, ch, opt.quadrature);
+        DirectLighting dl = computeDirectLight(scene, ch, opt.quadrature, setup);
         setup.report(1.0);
         ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
         setup.report(1.0);
@@ -447,15 +463,17 @@ Solution solveHierarchical(const Scene& scene,
         for (int k = 0; k < K; ++k) {
           Channel& c = *channels[k];
           c.op.far = far.get();
-          if (pass == 1) {
-            // Continue with the finer links: the change they make is added
-            // and becomes the unshot radiosity.
-            c.state.dx = c.x0 + c.op.apply(c.state.x) - c.state.x;
-            c.state.x += c.state.dx;
-          }
           const double eps = pass == 0 ? std::max(opt.epsilon, 1e-2) : opt.epsilon;
           const double a = pass == 0 ? 0.35 : 0.5, b = pass == 0 ? 0.4 : 0.95;
           const ProgressRange ip = gp.sub(a + (b - a) * k / K, a + (b - a) * (k + 1) / K);
+          c.state.first = -1.0;
+          c.state.reported = 0.0;
+          if (pass == 1) {
+            // Continue with the finer links: the change they make is added
+            // and becomes the unshot radiosity.
+            c.state.dx = c.x0 + c.op.apply(c.state.x, ip.sub(0.0, 0.0)) - c.state.x;
+            c.state.x += c.state.dx;
+          }
           bool done = false;
           if (opt.iteration != HierarchicalOptions::Iteration::Krylov) {
             done = shoot(c.op,
@@ -467,7 +485,7 @@ Solution solveHierarchical(const Scene& scene,
                          ip);
           }
           if (!done) {
-            krylov(c.op, c.x0, c.state, eps, opt.maxIterations, report);
+            krylov(c.op, c.x0, c.state, eps, opt.maxIterations, report, ip);
           }
         }
         report.iterationSeconds += since(t);
@@ -493,7 +511,7 @@ Solution solveHierarchical(const Scene& scene,
         Vector collided = c.sys.D;
         std::vector<double> farView(nv, 0.0);
         near.apply(g, c.state.x.data(), collided.data(), false);
-        far->apply(c.state.x.data(), collided.data(), farView.data());
+        far->apply(c.state.x.data(), collided.data(), farView.data(), gp.sub(0.95, 0.95));
         const Vector& x = c.state.x;
         const DirectLighting& dl = c.dl;
         storeChannelFields(

@@ -5,13 +5,15 @@
 #include "volrad/Sampling.h"
 
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <string>
+#include <utility>
 
 namespace volrad {
 
@@ -205,6 +207,50 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
   return sum / (double(na) * nb * centre);
 }
 
+/// Per-thread lists of candidates and links: deques, since a vector's
+/// doubling copies hundreds of MB at once (seconds in one block, which
+/// no stop request would interrupt).
+template<class T>
+using ThreadLists = tbb::combinable<std::deque<T>>;
+
+/// The lists of a combinable, one per thread that used it.
+template<class T>
+std::vector<std::deque<T>*> partsOf(ThreadLists<T>& c)
+{
+  std::vector<std::deque<T>*> parts;
+  c.combine_each([&](std::deque<T>& l) { parts.push_back(&l); });
+  return parts;
+}
+
+/// f(x) for every item of `parts` in turn, in blocks between progress
+/// reports: sequential passes over up to hundreds of millions of items.
+/// Draining removes each item after f: the memory goes back block by block,
+/// not in one long free at the end.
+template<bool Drain, class T, class F>
+void forEachInParts(const std::vector<std::deque<T>*>& parts, const ProgressRange& range, F&& f)
+{
+  std::int64_t total = 0;
+  for (const auto* l : parts) {
+    total += std::int64_t(l->size());
+  }
+  std::size_t part = 0, at = 0;
+  range.forBlocks(
+    total, std::int64_t(1) << 16, std::int64_t(1) << 22, [&](std::int64_t k0, std::int64_t k1) {
+      for (std::int64_t k = k0; k < k1; ++k) {
+        while (at == parts[part]->size()) {
+          ++part;
+          at = 0;
+        }
+        f((*parts[part])[at]);
+        if (Drain) {
+          parts[part]->pop_front();
+        } else {
+          ++at;
+        }
+      }
+    });
+}
+
 } // namespace
 
 double linkGamma(const ClusterTree& tree, Index a, Index b, double depthTolerance)
@@ -243,20 +289,17 @@ LinkSet refineLinks(const ClusterTree& tree,
   }
   const double budget = opt.tolerance * opt.powerScale;
   const SpreadCorrection spread(tree.grid(0).spacing);
-  tbb::combinable<std::vector<Accepted>> accepted;
+  ThreadLists<Accepted> accepted;
   int round = 0;
-  // Candidates are examined in chunks, with a progress report (and so a
-  // chance to abort) after each.
-  constexpr std::size_t kChunk = std::size_t(1) << 16;
+  // Candidates are examined in blocks, with a progress report (and so a
+  // chance to abort) after each; rounds past the ninth share the last tenth.
   while (!todo.empty()) {
-    tbb::combinable<std::vector<Pair>> next;
-    for (std::size_t c0 = 0; c0 < todo.size(); c0 += kChunk) {
-      if (c0 > 0) {
-        progress.report(std::min(0.9, 0.1 * (round + double(c0) / double(todo.size()))));
-      }
-      tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(c0, std::min(todo.size(), c0 + kChunk), 256),
-        [&](const auto& range) {
+    const ProgressRange roundRange =
+      progress.sub(std::min(0.9, 0.1 * round), std::min(0.9, 0.1 * (round + 1)));
+    ThreadLists<Pair> next;
+    roundRange.sub(0.0, 0.9).forBlocks(
+      std::int64_t(todo.size()), 1024, 4096, [&](std::int64_t c0, std::int64_t c1) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(c0, c1, 256), [&](const auto& range) {
           auto& out = next.local();
           auto& keep = accepted.local();
           std::array<Index, 8> ka, kb;
@@ -346,16 +389,22 @@ LinkSet refineLinks(const ClusterTree& tree,
             }
           }
         });
+      });
+    // The next round's candidates, in one vector.
+    const auto parts = partsOf(next);
+    std::size_t candidates = 0;
+    for (const auto* l : parts) {
+      candidates += l->size();
     }
-    todo.clear();
-    next.combine_each([&](std::vector<Pair>& l) {
-      todo.insert(todo.end(), l.begin(), l.end());
-      std::vector<Pair>().swap(l);
-    });
-    progress.report(std::min(0.9, 0.1 * ++round));
+    std::vector<Pair>().swap(todo);
+    todo.reserve(candidates);
+    forEachInParts<true>(
+      parts, roundRange.sub(0.9, 1.0), [&](const Pair& x) { todo.push_back(x); });
+    next.clear();
+    ++round;
     if (opt.maxLinks > 0) {
       std::size_t count = todo.size();
-      accepted.combine_each([&](const std::vector<Accepted>& l) { count += l.size(); });
+      accepted.combine_each([&](const std::deque<Accepted>& l) { count += l.size(); });
       if (count > opt.maxLinks) {
         throw Error("the hierarchical solve needs more than " + std::to_string(opt.maxLinks) +
                     " links, over its memory budget: raise solver.epsilon or the budget");
@@ -363,46 +412,65 @@ LinkSet refineLinks(const ClusterTree& tree,
     }
   }
 
-  // Both directions of every link, in a thread-independent order.
-  std::vector<Accepted> all;
-  accepted.combine_each([&](std::vector<Accepted>& l) {
-    all.insert(all.end(), l.begin(), l.end());
-    std::vector<Accepted>().swap(l);
-  });
-  LinkSet out;
-  out.pairs = (long long)all.size();
-  out.pairsPerLevel.assign(tree.levels(), 0);
-  for (const Accepted& x : all) {
-    ++out.pairsPerLevel[x.level];
-  }
+  // Both directions of every link, grouped by receiver (a counting sort:
+  // a comparison sort of tens of millions of links takes seconds and cannot
+  // be interrupted), then each receiver's links ordered by source so that
+  // the order does not depend on the threads.
   if (tree.size() > Index(std::numeric_limits<std::int32_t>::max())) {
     throw Error("the cluster tree is too large for 32-bit link indices");
   }
-  // The steps below take seconds at millions of links: a stop request is
-  // heard between them.
-  progress.report(0.92);
-  const std::size_t m = all.size();
-  all.resize(2 * m);
-  for (std::size_t k = 0; k < m; ++k) {
-    all[m + k] = { all[k].b, all[k].a, all[k].gamma, all[k].level };
-  }
-  // Receiver = b.
-  progress.report(0.94);
-  tbb::parallel_sort(all.begin(), all.end(), [](const Accepted& x, const Accepted& y) {
-    return x.b != y.b ? x.b < y.b : x.a < y.a;
-  });
-  progress.report(0.98);
+  const auto parts = partsOf(accepted);
+  LinkSet out;
+  out.pairsPerLevel.assign(tree.levels(), 0);
   out.start.assign(tree.size() + 1, 0);
-  out.source.resize(all.size());
-  out.gamma.resize(all.size());
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    ++out.start[all[k].b + 1];
-    out.source[k] = std::int32_t(all[k].a);
-    out.gamma[k] = all[k].gamma;
-  }
+  forEachInParts<false>(parts, progress.sub(0.9, 0.92), [&](const Accepted& x) {
+    ++out.pairs;
+    ++out.pairsPerLevel[x.level];
+    ++out.start[x.a + 1];
+    ++out.start[x.b + 1];
+  });
   for (Index n = 0; n < tree.size(); ++n) {
     out.start[n + 1] += out.start[n];
   }
+  // Growing the arrays faults in hundreds of MB: in blocks too.
+  out.source.reserve(out.start.back());
+  out.gamma.reserve(out.start.back());
+  progress.sub(0.92, 0.93)
+    .forBlocks(out.start.back(),
+               std::int64_t(1) << 20,
+               std::int64_t(1) << 22,
+               [&](std::int64_t, std::int64_t k1) {
+                 out.source.resize(k1);
+                 out.gamma.resize(k1);
+               });
+  std::vector<Index> cursor(out.start.begin(), out.start.end() - 1);
+  forEachInParts<true>(parts, progress.sub(0.93, 0.95), [&](const Accepted& x) {
+    const Index kb = cursor[x.b]++, ka = cursor[x.a]++;
+    out.source[kb] = std::int32_t(x.a);
+    out.gamma[kb] = x.gamma;
+    out.source[ka] = std::int32_t(x.b);
+    out.gamma[ka] = x.gamma;
+  });
+  accepted.clear();
+  std::vector<Index>().swap(cursor);
+  tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
+  progress.sub(0.95, 1.0).forBlocks(tree.size(), 256, 4096, [&](std::int64_t b0, std::int64_t b1) {
+    tbb::parallel_for(tbb::blocked_range<Index>(b0, b1, 256), [&](const auto& r) {
+      auto& links = scratch.local();
+      for (Index b = r.begin(); b != r.end(); ++b) {
+        const Index k0 = out.start[b], k1 = out.start[b + 1];
+        links.clear();
+        for (Index k = k0; k < k1; ++k) {
+          links.emplace_back(out.source[k], out.gamma[k]);
+        }
+        std::sort(links.begin(), links.end());
+        for (Index k = k0; k < k1; ++k) {
+          out.source[k] = links[k - k0].first;
+          out.gamma[k] = links[k - k0].second;
+        }
+      }
+    });
+  });
   progress.report(1.0);
   return out;
 }

@@ -226,7 +226,7 @@ NearField computeNearField(const Scene& scene,
 
   // Raw voxel rows: full-full into the stencil, the rest as triplets.
   TripletLists extras;
-  progress.sub(0.05, 0.8).forBlocks(nv, 4096, 50, [&](Index b0, Index b1) {
+  progress.sub(0.05, 0.8).forBlocks(nv, 256, 1024, [&](Index b0, Index b1) {
     tbb::parallel_for(
       tbb::blocked_range<Index>(b0, b1), [&](const tbb::blocked_range<Index>& range) {
         std::vector<double> row(width);
@@ -292,21 +292,28 @@ NearField computeNearField(const Scene& scene,
 
   // Patch rows, cut at the box around the voxel behind each patch.
   const Index np = el.patchCount;
-  tbb::parallel_for(Index(0), np, [&](Index p) {
-    auto& local = extras.local();
-    std::map<Index, double> row;
-    const auto c = g.ijk(g.patchVoxel(p));
-    gatherPatch(
-      medium, el, p, opt.quadrature, neighbourhood(g, g.patchVoxel(p), r), [&](Index e, double w) {
-        const auto u = g.ijk(el.isPatch(e) ? g.patchVoxel(e - el.fullCount) : el.voxelOf[e]);
-        if (std::max({ std::abs(u[0] - c[0]), std::abs(u[1] - c[1]), std::abs(u[2] - c[2]) }) <=
-            r) {
-          row[e] += w;
-        }
-      });
-    for (const auto& [e, w] : row) {
-      local.push_back({ el.patchElement(p), e, w });
-    }
+  progress.sub(0.8, 0.85).forBlocks(np, 64, 256, [&](Index b0, Index b1) {
+    tbb::parallel_for(Index(b0), Index(b1), [&](Index p) {
+      auto& local = extras.local();
+      std::map<Index, double> row;
+      const auto c = g.ijk(g.patchVoxel(p));
+      gatherPatch(
+        medium,
+        el,
+        p,
+        opt.quadrature,
+        neighbourhood(g, g.patchVoxel(p), r),
+        [&](Index e, double w) {
+          const auto u = g.ijk(el.isPatch(e) ? g.patchVoxel(e - el.fullCount) : el.voxelOf[e]);
+          if (std::max({ std::abs(u[0] - c[0]), std::abs(u[1] - c[1]), std::abs(u[2] - c[2]) }) <=
+              r) {
+            row[e] += w;
+          }
+        });
+      for (const auto& [e, w] : row) {
+        local.push_back({ el.patchElement(p), e, w });
+      }
+    });
   });
   progress.report(0.85);
 
@@ -413,7 +420,7 @@ NearField computeNearField(const Scene& scene,
   const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
   // In blocks, with a progress report (and a chance to abort) after each:
   // the empty voxels around a head or a cloud are many.
-  progress.sub(0.9, 0.99).forBlocks(nv, 4096, 20, [&](Index b0, Index b1) {
+  progress.sub(0.9, 0.99).forBlocks(nv, 256, 1024, [&](Index b0, Index b1) {
     tbb::parallel_for(b0, b1, [&](Index v) {
       if (el.full[v] >= 0) {
         return;

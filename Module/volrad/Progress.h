@@ -6,6 +6,7 @@
 #include "volrad/Error.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 
@@ -41,18 +42,29 @@ public:
   {
     return ProgressRange(cb_, begin_ + (end_ - begin_) * begin, begin_ + (end_ - begin_) * end);
   }
-  /// Calls body(begin, end) on consecutive blocks of [0, n), about `blocks`
-  /// of them and none under `minBlock` items, reporting after each how far
-  /// it got: a long (parallel) pass that a stop request interrupts between
-  /// blocks.
+  /// Calls body(begin, end) on consecutive blocks of [0, n), reporting
+  /// after each how far it got: a long (parallel) pass that a stop request
+  /// interrupts between blocks. Blocks are sized to take about 0.1 s each,
+  /// whatever an item costs, from `firstBlock` items up to `maxBlock` (the
+  /// items after a run of cheap ones may be dear: maxBlock of the dearest
+  /// should take a fraction of a second).
   template<class Body>
-  void forBlocks(std::int64_t n, std::int64_t minBlock, std::int64_t blocks, Body&& body) const
+  void forBlocks(std::int64_t n, std::int64_t firstBlock, std::int64_t maxBlock, Body&& body) const
   {
-    const std::int64_t size = std::max(minBlock, n / blocks);
-    for (std::int64_t b0 = 0; b0 < n; b0 += size) {
-      const std::int64_t b1 = std::min(n, b0 + size);
+    using Clock = std::chrono::steady_clock;
+    constexpr double kBlockSeconds = 0.1;
+    double size = double(std::max<std::int64_t>(1, firstBlock));
+    for (std::int64_t b0 = 0; b0 < n;) {
+      const std::int64_t b1 = std::min(n, b0 + std::int64_t(size));
+      const Clock::time_point start = Clock::now();
       body(b0, b1);
+      const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
       report(double(b1) / double(n));
+      // The next block: as long as this one would have needed to take
+      // kBlockSeconds, growing at most 4x at a time.
+      size = std::clamp(size * kBlockSeconds / std::max(seconds, 1e-9), 1.0, 4.0 * size);
+      size = std::min(size, double(std::max<std::int64_t>(1, maxBlock)));
+      b0 = b1;
     }
   }
 

@@ -176,6 +176,34 @@ TEST(HierarchicalSolver, SingleThreadedRunsAreBitIdentical)
   EXPECT_EQ(b.G, c.G);
 }
 
+// Every phase checks for a stop (issue 8): progress rises to 1 without going
+// back, and a stop asked at any of its reports, early, middle or late, ends
+// the solve with Aborted.
+TEST(HierarchicalSolver, ProgressRisesToOneAndAStopAnywhereEndsTheSolve)
+{
+  const Scene s = pointLightScene(8);
+  HierarchicalOptions o;
+  std::vector<double> fractions;
+  o.progress = [&](double f) {
+    fractions.push_back(f);
+    return true;
+  };
+  solveHierarchical(s, o);
+  ASSERT_GT(fractions.size(), 20u);
+  for (std::size_t i = 1; i < fractions.size(); ++i) {
+    ASSERT_GE(fractions[i], fractions[i - 1]) << "report " << i;
+  }
+  EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+  const std::size_t reports = fractions.size();
+  for (const double at : { 0.05, 0.3, 0.5, 0.7, 0.95 }) {
+    const std::size_t stopAt = std::size_t(at * double(reports));
+    std::size_t count = 0;
+    o.progress = [&](double) { return ++count <= stopAt; };
+    EXPECT_THROW(solveHierarchical(s, o), Aborted) << "stop at report " << stopAt;
+    EXPECT_EQ(count, stopAt + 1) << "reports after the stop";
+  }
+}
+
 TEST(HierarchicalSolver, RefusesOverItsMemoryBudget)
 {
   const Scene s = pointLightScene(12);
