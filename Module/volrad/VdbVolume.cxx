@@ -7,6 +7,7 @@
 #include <openvdb/openvdb.h>
 #endif
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -65,6 +66,30 @@ std::unique_ptr<openvdb::io::File> openFile(const std::string& path)
   return file;
 }
 
+/// OpenVDB's message in one short line: from a corrupt file it quotes what
+/// it read as a name, which can be a gigabyte of blanks.
+std::string shortMessage(const char* what)
+{
+  constexpr std::size_t kMost = 200;
+  std::string out;
+  bool cut = false;
+  for (const char* p = what; *p; ++p) {
+    const unsigned char c = static_cast<unsigned char>(*p);
+    if (!std::isgraph(c) && c != ' ') {
+      continue; // control characters and bytes past ASCII
+    }
+    if (c == ' ' && (out.empty() || out.back() == ' ')) {
+      continue; // runs of blanks as one
+    }
+    if (out.size() == kMost) {
+      cut = true;
+      break;
+    }
+    out += char(c);
+  }
+  return cut ? out + "..." : out;
+}
+
 /// Runs a read from an open file; OpenVDB's own errors (a truncated or
 /// corrupt file passes open() and fails here) become VolRad's, naming it.
 template<class Read>
@@ -72,8 +97,13 @@ auto readFrom(const std::string& path, Read read) -> decltype(read())
 {
   try {
     return read();
+  } catch (const Error&) {
+    throw;
   } catch (const openvdb::Exception& e) {
-    throw Error("'" + path + "' is corrupt or truncated: " + e.what());
+    throw Error("'" + path + "' is corrupt or truncated: " + shortMessage(e.what()));
+  } catch (const std::exception& e) {
+    // A length read from garbage: bad_alloc, length_error.
+    throw Error("'" + path + "' is corrupt or truncated: " + shortMessage(e.what()));
   }
 }
 
