@@ -50,22 +50,6 @@ bool vdbSupported()
 
 namespace {
 
-/// Opens a .vdb file for reading, with VolRad's messages.
-std::unique_ptr<openvdb::io::File> openFile(const std::string& path)
-{
-  openvdb::initialize();
-  if (!std::ifstream(path)) {
-    throw Error("cannot read the file '" + path + "'");
-  }
-  auto file = std::make_unique<openvdb::io::File>(path);
-  try {
-    file->open();
-  } catch (const std::exception& e) {
-    throw Error("'" + path + "' is not a readable OpenVDB file: " + e.what());
-  }
-  return file;
-}
-
 /// OpenVDB's message in one short line: from a corrupt file it quotes what
 /// it read as a name, which can be a gigabyte of blanks.
 std::string shortMessage(const char* what)
@@ -90,21 +74,38 @@ std::string shortMessage(const char* what)
   return cut ? out + "..." : out;
 }
 
-/// Runs a read from an open file; OpenVDB's own errors (a truncated or
-/// corrupt file passes open() and fails here) become VolRad's, naming it.
+/// Runs f; OpenVDB's own errors (and std ones from lengths read from
+/// garbage: bad_alloc, length_error) become VolRad's, naming the file.
+template<class F>
+auto withVdbErrors(const std::string& path, const char* problem, F f) -> decltype(f())
+{
+  try {
+    return f();
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error("'" + path + "' " + problem + ": " + shortMessage(e.what()));
+  }
+}
+
+/// Opens a .vdb file for reading, with VolRad's messages.
+std::unique_ptr<openvdb::io::File> openFile(const std::string& path)
+{
+  openvdb::initialize();
+  if (!std::ifstream(path)) {
+    throw Error("cannot read the file '" + path + "'");
+  }
+  auto file = std::make_unique<openvdb::io::File>(path);
+  withVdbErrors(path, "is not a readable OpenVDB file", [&] { file->open(); });
+  return file;
+}
+
+/// Runs a read from an open file (a truncated or corrupt file passes open()
+/// and fails here).
 template<class Read>
 auto readFrom(const std::string& path, Read read) -> decltype(read())
 {
-  try {
-    return read();
-  } catch (const Error&) {
-    throw;
-  } catch (const openvdb::Exception& e) {
-    throw Error("'" + path + "' is corrupt or truncated: " + shortMessage(e.what()));
-  } catch (const std::exception& e) {
-    // A length read from garbage: bad_alloc, length_error.
-    throw Error("'" + path + "' is corrupt or truncated: " + shortMessage(e.what()));
-  }
+  return withVdbErrors(path, "is corrupt or truncated", read);
 }
 
 template<class GridT, int Components>
