@@ -37,6 +37,29 @@ double halfChord(const Grid& g)
   return 2.0 * h.prod() / (2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]));
 }
 
+/// log of what a voxel leaf collides with or emits towards w, relative to
+/// its cross-section, per unit of the transmittance measured from its
+/// centre: integral over the voxel of kappa exp(kappa (x - c).w) dx, which
+/// is kappa V prod_a sinh(z_a) / z_a, z_a = kappa h_a w_a / 2 (exact for
+/// a homogeneous voxel seen from afar). Links between leaves then march the
+/// whole line between the points they join, each voxel's own part included.
+/// 0 for patches.
+double logLeafFactor(const ClusterTree& t, Index n, const Vec3& w)
+{
+  const double sigma = t.sigma(n), kappa = t.meanKappaT(n);
+  if (t.isPatch(n) || !(sigma > 0.0) || !(kappa > 0.0)) {
+    return 0.0;
+  }
+  const Grid& g = t.grid(0);
+  double log = std::log(kappa * g.voxelVolume() / sigma);
+  for (int a = 0; a < 3; ++a) {
+    const double z = 0.5 * kappa * g.spacing[a] * std::abs(w[a]);
+    // log(sinh(z) / z), without overflow for thick voxels.
+    log += z < 1e-4 ? z * z / 6.0 : z + std::log((1.0 - std::exp(-2.0 * z)) / (2.0 * z));
+  }
+  return log;
+}
+
 /// sigma of a node towards direction w (pointing away from it), for the
 /// error estimate: empty voxels count with viewSigma each, since their views
 /// (G of empty space) come from the same links.
@@ -152,37 +175,37 @@ int leafPoints(const ClusterTree& t, Index n, std::array<Vec3, 8>& out)
   return 4;
 }
 
-/// Optical depth of the segment p -> q outside the boxes of a and b.
-double depthBetween(const ClusterTree& t, Index a, Index b, const Vec3& p, const Vec3& q)
-{
-  const Vec3 d = q - p;
-  const double r = d.norm();
-  if (!(r > 0.0)) {
-    return 0.0;
-  }
-  const Vec3 w = d / r;
-  const double t0 = exitDistance(t, a, p, w), t1 = r - exitDistance(t, b, q, -w);
-  return t1 > t0 ? t.pyramid().opticalDepth(p + t0 * w, p + t1 * w, 0).estimate : 0.0;
-}
+/// A voxel end's factor exceeds its own attenuation by kappa h / 2 at most;
+/// past this a line's depth is so large that nothing arrives anyway.
+constexpr double kMaxLogGain = 50.0;
 
 /// gamma of a link between two leaves a few voxels apart, where neither the
 /// medium between them nor the geometry is one line's: the transmittance
 /// is averaged over parallel lines between the Gauss points of two voxels
 /// (their 1/r^2 mean is the exact table's), and links with a patch
 /// integrate cosines, 1/r^2 and transmittance over the Gauss points of both
-/// ends, per unit of the centroids' cosines the gathering applies.
+/// ends, per unit of the centroids' cosines the gathering applies. Lines are
+/// marched whole, each voxel end's factor (logLeafFactor) included.
 double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
 {
   std::array<Vec3, 8> pa, pb;
   const int na = leafPoints(t, a, pa), nb = leafPoints(t, b, pb);
   const Vec3 ca = t.centroid(a), cb = t.centroid(b);
   const double rc = (cb - ca).norm();
+  const VoxelPyramid& pyramid = t.pyramid();
   if (!t.isPatch(a) && !t.isPatch(b)) {
+    const Vec3 w = (cb - ca) / rc;
+    double depth[8], least = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 8; ++k) {
+      depth[k] = pyramid.opticalDepth(pa[k], pb[k], 0).estimate;
+      least = std::min(least, depth[k]);
+    }
     double tau = 0.0;
     for (int k = 0; k < 8; ++k) {
-      tau += std::exp(-depthBetween(t, a, b, pa[k], pb[k]));
+      tau += std::exp(least - depth[k]);
     }
-    return spread * tau / (8.0 * kPi * rc * rc);
+    const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
+    return spread * std::exp(std::min(ends - least, kMaxLogGain)) * tau / (8.0 * kPi * rc * rc);
   }
   auto cosine = [&](Index n, const Vec3& w) {
     return t.isPatch(n) ? faceInwardNormal(t.face(n)).dot(w) : 1.0;
@@ -200,7 +223,9 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
       const Vec3 w = d / std::sqrt(r2);
       const double c = std::max(0.0, cosine(a, w)) * std::max(0.0, cosine(b, -w));
       if (c > 0.0) {
-        sum += c * std::exp(-depthBetween(t, a, b, pa[i], pb[j])) / (kPi * r2);
+        const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
+        const double depth = pyramid.opticalDepth(pa[i], pb[j], 0).estimate;
+        sum += c * std::exp(std::min(ends - depth, kMaxLogGain)) / (kPi * r2);
       }
     }
   }
@@ -262,15 +287,19 @@ double linkGamma(const ClusterTree& tree, Index a, Index b, double depthToleranc
     return 0.0;
   }
   const Vec3 w = ab / r;
+  // Voxel leaves: the whole line and their factor; clusters: from half a
+  // voxel chord off the centroid, the attenuation their voxels' effective
+  // cross-sections hold (the optical-size term of the error covers the rest).
   const double chord = halfChord(tree.grid(0));
-  const double t0 = tree.isPatch(a) ? 0.0 : chord;
-  const double t1 = r - (tree.isPatch(b) ? 0.0 : chord);
-  double tau = 1.0;
+  const bool cutA = !tree.isPatch(a) && !tree.isLeaf(a), cutB = !tree.isPatch(b) && !tree.isLeaf(b);
+  const double t0 = cutA ? chord : 0.0, t1 = r - (cutB ? chord : 0.0);
+  double depth = 0.0;
   if (t1 > t0) {
-    tau = std::exp(
-      -tree.pyramid().opticalDepthAdaptive(ca + t0 * w, ca + t1 * w, depthTolerance).estimate);
+    depth = tree.pyramid().opticalDepthAdaptive(ca + t0 * w, ca + t1 * w, depthTolerance).estimate;
   }
-  return tau / (kPi * r * r);
+  const double ends = (tree.isLeaf(a) ? logLeafFactor(tree, a, w) : 0.0) +
+                      (tree.isLeaf(b) ? logLeafFactor(tree, b, -w) : 0.0);
+  return std::exp(std::min(ends - depth, kMaxLogGain)) / (kPi * r * r);
 }
 
 LinkSet refineLinks(const ClusterTree& tree,

@@ -8,10 +8,12 @@
 /// A link between nodes A and B stands for the exchange areas between all
 /// their elements, S(A, B) ~ sigma_A(w) sigma_B(-w) gamma, with
 /// gamma = tau / (pi r^2) from centroid to centroid (tau marched in the voxel
-/// pyramid within a tolerance, less half a voxel chord at a voxel end, whose
-/// own attenuation its effective cross-section holds) and sigma(w) a voxel
-/// cluster's cross-section (isotropic) or a patch node's area times the
-/// cosine towards the other end. Front sides inside clusters emit and
+/// pyramid within a tolerance; at a cluster end less half a voxel chord,
+/// whose attenuation its voxels' effective cross-sections hold; a voxel end
+/// is marched from its centre, times its exact far-field factor
+/// kappa V prod sinh(z_a)/z_a / sigma, z_a = kappa h_a w_a / 2) and sigma(w)
+/// a voxel cluster's cross-section (isotropic) or a patch node's area times
+/// the cosine towards the other end. Front sides inside clusters emit and
 /// receive through an order-1 spherical-harmonic mask (exact at voxels).
 ///
 /// Refinement: the pair (A, B) is linked when their voxel boxes are more
