@@ -59,6 +59,8 @@ FarField::FarField(const Scene& scene,
   , fronts_(near.elements.frontCount > 0)
 {
   const Index nodes = tree.size();
+  centroid_.resize(nodes);
+  forEach(nodes, [&](Index k) { centroid_[k] = tree.centroid(k); });
   emit_.assign(nodes, 0.0);
   phi_.assign(nodes, 0.0);
   if (fronts_) {
@@ -195,7 +197,7 @@ void FarField::gather(const double* x,
       Vec3 w = Vec3::Zero(); // from a towards b
       if (needW) {
         if (!haveCb) {
-          cb = tree_.centroid(b);
+          cb = centroid_[b];
           if (patchB) {
             nb = faceInwardNormal(tree_.face(b));
           } else if (frontB) {
@@ -203,13 +205,13 @@ void FarField::gather(const double* x,
           }
           haveCb = true;
         }
-        w = (cb - tree_.centroid(a)).normalized();
+        w = (cb - centroid_[a]).normalized();
       }
       if (patchA) {
         e *= std::max(0.0, faceInwardNormal(tree_.face(a)).dot(w));
       } else if (frontA) {
         const double d = frontEmit_[a];
-        if (tree_.isLeaf(a)) {
+        if (a < nv) { // a voxel leaf (voxel nodes come first)
           e += unitNormal(scene_, a).dot(w) > 0.0 ? d : 0.0;
         } else {
           e += std::clamp(0.5 * d + 0.75 * frontMoment_[a].dot(w), 0.0, d);
@@ -303,7 +305,7 @@ std::size_t FarField::bytes() const
   return (emit_.size() + phi_.size() + frontEmit_.size() + leafDirect_.size() + leafFront_.size() +
           scale_.size()) *
            sizeof(double) +
-         (frontMoment_.size() + psi_.size()) * sizeof(Vec3);
+         (frontMoment_.size() + psi_.size() + centroid_.size()) * sizeof(Vec3);
 }
 
 } // namespace volrad

@@ -64,6 +64,9 @@ private:
   bool fronts_ = false;
   static constexpr int kBalanceSteps = 6;
   std::vector<double> scale_, inScale_, self_;
+  /// Per node, its centroid (the gather's directions: ClusterTree::centroid
+  /// finds a node's level first, at every link).
+  std::vector<Vec3> centroid_;
   // Work arrays, per tree node (mutable: apply is logically const).
   mutable std::vector<double> emit_, phi_, scaled_;
   mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;
