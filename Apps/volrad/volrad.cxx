@@ -8,14 +8,11 @@
 
 #include "VolumeSnapshot.h"
 
-#include "volrad/VdbVolume.h"
-
 #include "vtkCallbackCommand.h"
 #include "vtkCommand.h"
 #include "vtkDICOMImageReader.h"
 #include "vtkDataArray.h"
 #include "vtkFieldData.h"
-#include "vtkFloatArray.h"
 #include "vtkImageChangeInformation.h"
 #include "vtkImageData.h"
 #include "vtkImageShrink3D.h"
@@ -23,13 +20,14 @@
 #include "vtkMetaImageReader.h"
 #include "vtkNew.h"
 #include "vtkNrrdReader.h"
+#include "vtkOpenVDBGridReader.h"
+#include "vtkOpenVDBGridWriter.h"
 #include "vtkOutputWindow.h"
 #include "vtkPNGWriter.h"
 #include "vtkPointData.h"
 #include "vtkSLCReader.h"
 #include "vtkSmartPointer.h"
 #include "vtkStructuredPointsReader.h"
-#include "vtkTrivialProducer.h"
 #include "vtkXMLImageDataReader.h"
 #include "vtkXMLImageDataWriter.h"
 
@@ -84,74 +82,6 @@ std::string lowerExtension(const std::string& path)
   return e;
 }
 
-/// An OpenVDB grid as image data: its active box, a point array named after
-/// the grid (the active scalars).
-vtkSmartPointer<vtkAlgorithm> readVdb(const std::string& path, const std::string& grid)
-{
-  const volrad::DenseVolume v = volrad::readVdbGrid(path, grid);
-  vtkNew<vtkImageData> image;
-  image->SetDimensions(v.dims[0], v.dims[1], v.dims[2]);
-  image->SetSpacing(v.spacing[0], v.spacing[1], v.spacing[2]);
-  image->SetOrigin(v.origin[0], v.origin[1], v.origin[2]);
-  vtkNew<vtkFloatArray> values;
-  values->SetName(v.name.c_str());
-  values->SetNumberOfComponents(v.components);
-  values->SetNumberOfTuples(image->GetNumberOfPoints());
-  std::copy(v.values.begin(), v.values.end(), values->GetPointer(0));
-  image->GetPointData()->SetScalars(values);
-  auto producer = vtkSmartPointer<vtkTrivialProducer>::New();
-  producer->SetOutput(image);
-  return producer;
-}
-
-/// The output fields as OpenVDB grids (float, or vec3s for RGB), written
-/// next to the target and renamed.
-void writeVdb(vtkImageData* result, const std::string& path)
-{
-  std::vector<volrad::DenseVolume> grids;
-  for (const char* name : { "IncidentRadiation",
-                            "IsotropicRadiosity",
-                            "DiffuseRadiosity",
-                            "FrontIncidentRadiation",
-                            "AbsorbedPower" }) {
-    vtkDataArray* a = result->GetPointData()->GetArray(name);
-    if (!a) {
-      continue;
-    }
-    volrad::DenseVolume v;
-    v.name = name;
-    result->GetDimensions(v.dims.data());
-    double spacing[3], origin[3];
-    result->GetSpacing(spacing);
-    result->GetOrigin(origin);
-    int extent[6];
-    result->GetExtent(extent);
-    for (int k = 0; k < 3; ++k) {
-      v.spacing[k] = spacing[k];
-      v.origin[k] = origin[k] + extent[2 * k] * spacing[k];
-    }
-    v.components = a->GetNumberOfComponents();
-    v.values.resize(std::size_t(a->GetNumberOfTuples()) * v.components);
-    for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) {
-      for (int c = 0; c < v.components; ++c) {
-        v.values[std::size_t(i) * v.components + c] = float(a->GetComponent(i, c));
-      }
-    }
-    grids.push_back(std::move(v));
-  }
-  const std::string partial = path + ".partial.vdb";
-  try {
-    volrad::writeVdbGrids(partial, grids);
-  } catch (...) {
-    std::remove(partial.c_str());
-    throw;
-  }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    std::remove(partial.c_str());
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
-}
-
 /// The reader for a path: by its extension, or DICOM for a directory.
 /// Null (and `error` set) for a format volrad does not read.
 vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path,
@@ -165,12 +95,10 @@ vtkSmartPointer<vtkAlgorithm> makeReader(const std::string& path,
   }
   const std::string e = lowerExtension(path);
   if (e == ".vdb") {
-    try {
-      return readVdb(path, grid);
-    } catch (const std::exception& ex) {
-      error = ex.what();
-      return nullptr;
-    }
+    auto r = vtkSmartPointer<vtkOpenVDBGridReader>::New();
+    r->SetFileName(path.c_str());
+    r->SetGridName(grid.c_str());
+    return r;
   }
   if (e == ".vti") {
     auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
@@ -376,6 +304,9 @@ int main(int argc, char* argv[])
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->Update();
   vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!errors.messages.empty() && vtkOpenVDBGridReader::SafeDownCast(reader)) {
+    return fail(errors.messages); // it names the file and what is wrong with it
+  }
   if (!errors.messages.empty() || !image) {
     return fail("cannot read '" + input + "' as image data" +
                 (errors.messages.empty() ? "" : ": " + errors.messages));
@@ -436,27 +367,38 @@ int main(int argc, char* argv[])
   }
 
   if (lowerExtension(output) == ".vdb") {
-    try {
-      writeVdb(result, output);
-    } catch (const std::exception& e) {
-      return fail(e.what());
+    // The output fields as OpenVDB grids (float, vec3s in RGB).
+    vtkNew<vtkOpenVDBGridWriter> writer;
+    writer->SetFileName(output.c_str());
+    writer->SetInputData(result);
+    for (const char* name : { "IncidentRadiation",
+                              "IsotropicRadiosity",
+                              "DiffuseRadiosity",
+                              "FrontIncidentRadiation",
+                              "AbsorbedPower" }) {
+      if (result->GetPointData()->GetArray(name)) {
+        writer->AddArrayName(name);
+      }
     }
-    std::cout << "volrad: wrote " << output << " (OpenVDB grids of the output fields)\n";
-    return 0;
-  }
-  // Write next to the target, then rename: no partial file on failure.
-  vtkNew<vtkXMLImageDataWriter> writer;
-  writer->SetFileName(partial.c_str());
-  writer->SetInputData(result);
-  writer->AddObserver(vtkCommand::ErrorEvent, onError);
-  if (writer->Write() != 1 || !errors.messages.empty()) {
-    std::remove(partial.c_str());
-    return fail("cannot write '" + output + "'" +
-                (errors.messages.empty() ? "" : ": " + errors.messages));
-  }
-  if (std::rename(partial.c_str(), output.c_str()) != 0) {
-    std::remove(partial.c_str());
-    return fail("cannot write '" + output + "'");
+    writer->AddObserver(vtkCommand::ErrorEvent, onError);
+    if (writer->Write() != 1 || !errors.messages.empty()) {
+      return fail(errors.messages.empty() ? "cannot write '" + output + "'" : errors.messages);
+    }
+  } else {
+    // Write next to the target, then rename: no partial file on failure.
+    vtkNew<vtkXMLImageDataWriter> writer;
+    writer->SetFileName(partial.c_str());
+    writer->SetInputData(result);
+    writer->AddObserver(vtkCommand::ErrorEvent, onError);
+    if (writer->Write() != 1 || !errors.messages.empty()) {
+      std::remove(partial.c_str());
+      return fail("cannot write '" + output + "'" +
+                  (errors.messages.empty() ? "" : ": " + errors.messages));
+    }
+    if (std::rename(partial.c_str(), output.c_str()) != 0) {
+      std::remove(partial.c_str());
+      return fail("cannot write '" + output + "'");
+    }
   }
   if (picture) {
     const std::string partialPng = png + ".partial.png";

@@ -39,9 +39,8 @@ import time
 # helper (without them, vtkRenderWindow() is an abstract object).
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
-from vtkmodules.vtkCommonCore import VTK_FLOAT, vtkFloatArray
+from vtkmodules.vtkCommonCore import vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.vtkImagingCore import vtkImageShiftScale
 from vtkmodules.vtkRenderingCore import vtkRenderer
 
 # The picture helpers (same folder, shared with ct_head.py and frog_labels.py)
@@ -138,38 +137,12 @@ def extinction_per_km(coarse):
     return OPTICAL_DEPTH_PER_VOXEL / coarse.GetSpacing()[0] / (hi - lo)
 
 
-def render_ready_rgba(cloud, G, kappa_per_density):
-    """RGBA unsigned char: RGB = 255 albedo x G / G_WHITE (the cloud is
-    white), A = 255 x the opacity of OPACITY_UNIT km."""
-    rgb = vtkImageShiftScale()
-    rgb.SetInputData(G)
-    rgb.SetScale(255.0 * ALBEDO / G_WHITE)
-    rgb.SetOutputScalarTypeToUnsignedChar()
-    rgb.ClampOverflowOn()
-
-    # 1 - exp(-kappa OPACITY_UNIT), kappa = kappa_per_density x density.
-    alpha = vtkImageData()
-    alpha.CopyStructure(cloud)
-    alpha.AllocateScalars(VTK_FLOAT, 1)
-    density = cloud.GetPointData().GetScalars()
-    values = alpha.GetPointData().GetScalars()
-    for n in range(density.GetNumberOfTuples()):
-        values.SetValue(n, 255.0 * (1.0 - math.exp(-kappa_per_density * density.GetValue(n)
-                                                    * OPACITY_UNIT)))
-    alpha_byte = vtkImageShiftScale()
-    alpha_byte.SetInputData(alpha)
-    alpha_byte.SetOutputScalarTypeToUnsignedChar()
-    alpha_byte.ClampOverflowOn()
-
-    return pictures.append_rgba(rgb, alpha_byte)
-
-
 def volume_picture(cloud, G, kappa_per_density, size, path):
     """(a) Emission-absorption volume rendering of the baked light: colour =
     albedo x G, opacity from the extinction, seen from the south (-y) a
     little below the cloud's middle, the sun on the left."""
-    volume = rgba_volume(render_ready_rgba(cloud, G, kappa_per_density), OPACITY_UNIT,
-                         SIZE_KM / FINE / 2)
+    rgba = pictures.scattering_rgba(cloud, G, ALBEDO / G_WHITE, kappa_per_density, OPACITY_UNIT)
+    volume = rgba_volume(rgba, OPACITY_UNIT, SIZE_KM / FINE / 2)
     renderer = vtkRenderer()
     # A sky behind it: deep blue above, paler at the horizon.
     renderer.GradientBackgroundOn()

@@ -7,14 +7,15 @@ asks for; the regression-image tests compare them with Testing/Baseline, so
 what is here must give the same pixels on every run.
 """
 import argparse
+import math
 import os
 import time
 
 # Factories of the OpenGL render window (without them, vtkRenderWindow() is
 # an abstract object).
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
-from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkLookupTable
-from vtkmodules.vtkCommonDataModel import vtkPlane
+from vtkmodules.vtkCommonCore import VTK_FLOAT, vtkDoubleArray, vtkLookupTable
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPlane
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkFiltersCore import vtkCutter, vtkFlyingEdges3D
 from vtkmodules.vtkFiltersGeneral import vtkTransformPolyDataFilter
@@ -105,6 +106,34 @@ def lit_colour(albedo_rgb, G, g_white):
     rgb.SetOutputScalarTypeToUnsignedChar()
     rgb.ClampOverflowOn()
     return rgb
+
+
+def scattering_rgba(density, G, brightness, kappa_per_density, opacity_unit):
+    """RGBA unsigned char of a white scattering medium (a cloud, smoke):
+    RGB = 255 x brightness x G (brightness: albedo over the G shown at full
+    white), A = 255 x the opacity of `opacity_unit` of length, the
+    extinction being kappa_per_density x density."""
+    rgb = vtkImageShiftScale()
+    rgb.SetInputData(G)
+    rgb.SetScale(255.0 * brightness)
+    rgb.SetOutputScalarTypeToUnsignedChar()
+    rgb.ClampOverflowOn()
+
+    # 1 - exp(-kappa opacity_unit), kappa = kappa_per_density x density.
+    alpha = vtkImageData()
+    alpha.CopyStructure(density)
+    alpha.AllocateScalars(VTK_FLOAT, 1)
+    rho = density.GetPointData().GetScalars()
+    values = alpha.GetPointData().GetScalars()
+    for n in range(rho.GetNumberOfTuples()):
+        values.SetValue(n, 255.0 * (1.0 - math.exp(-kappa_per_density * rho.GetValue(n)
+                                                    * opacity_unit)))
+    alpha_byte = vtkImageShiftScale()
+    alpha_byte.SetInputData(alpha)
+    alpha_byte.SetOutputScalarTypeToUnsignedChar()
+    alpha_byte.ClampOverflowOn()
+
+    return append_rgba(rgb, alpha_byte)
 
 
 def append_rgba(rgb, alpha):

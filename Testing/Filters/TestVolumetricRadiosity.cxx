@@ -3,6 +3,7 @@
 // and its errors.
 #include "vtkVolumetricRadiosity.h"
 
+#include "CollectErrors.h"
 #include "IncidentRadiation.h"
 
 #include "vtkCallbackCommand.h"
@@ -32,6 +33,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+
+using volrad::test::updateCollectingErrors;
 
 namespace {
 
@@ -72,23 +75,6 @@ void addOnes(vtkDataSetAttributes* data, const char* name, vtkIdType tuples, int
 const char* kScene = R"({"version": 1, "solver": {"method": "dense"},
   "lights": [{"type": "directional", "direction": [0.3, -0.2, -1], "irradiance": 2}],
   "boundary": {"zmin": {"type": "wall", "reflectance": 0.5}}})";
-
-/// Updates the filter; returns the error messages it and its executive gave.
-std::string updateCollectingErrors(vtkVolumetricRadiosity* f)
-{
-  std::string messages;
-  vtkNew<vtkCallbackCommand> cb;
-  cb->SetClientData(&messages);
-  cb->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
-    *static_cast<std::string*>(self) += static_cast<const char*>(data);
-  });
-  const unsigned long a = f->AddObserver(vtkCommand::ErrorEvent, cb);
-  const unsigned long b = f->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, cb);
-  f->Update();
-  f->RemoveObserver(a);
-  f->GetExecutive()->RemoveObserver(b);
-  return messages;
-}
 
 std::vector<float> runFilter(vtkImageData* image, const char* scene, std::string* error = nullptr)
 {
@@ -217,15 +203,10 @@ TEST(VolumetricRadiosity, ANamedArrayThatIsMissingIsZeroWithAWarning)
   f->SetInputData(image);
   f->SetSceneJSON(
     R"({"version": 1, "arrays": {"absorption": "kappa_a", "surface_emission": "glow"}})");
-  std::string warnings;
-  vtkNew<vtkCallbackCommand> cb;
-  cb->SetClientData(&warnings);
-  cb->SetCallback([](vtkObject*, unsigned long, void* self, void* data) {
-    *static_cast<std::string*>(self) += static_cast<const char*>(data);
-  });
-  f->AddObserver(vtkCommand::WarningEvent, cb);
+  volrad::test::MessageCollector warnings;
+  warnings.observe(f, vtkCommand::WarningEvent);
   f->Update();
-  EXPECT_NE(warnings.find("'glow'"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.text.find("'glow'"), std::string::npos) << warnings.text;
   EXPECT_EQ(
     runFilter(image, R"({"version": 1})"),
     std::vector<float>(
@@ -502,9 +483,9 @@ TEST(VolumetricRadiosity, OneThreadIsBitIdenticalAndManyThreadsAgreeWithIt)
            { "IncidentRadiation", "IsotropicRadiosity", "DiffuseRadiosity", "AbsorbedPower" }) {
         auto* a = vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray(name));
         EXPECT_NE(a, nullptr) << name;
-        fields.emplace_back(a ? std::vector<float>(a->GetPointer(0),
-                                                   a->GetPointer(0) + a->GetNumberOfValues())
-                              : std::vector<float>());
+        fields.emplace_back(
+          a ? std::vector<float>(a->GetPointer(0), a->GetPointer(0) + a->GetNumberOfValues())
+            : std::vector<float>());
       }
       return fields;
     };

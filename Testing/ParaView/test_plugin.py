@@ -1,7 +1,8 @@
 """The VolRad plugin as a ParaView user loads it (PV_PLUGIN_PATH), through
 pvpython: every panel property reaches the filter as its scene-file
 counterpart does, ParaView's own transfer functions serve as the material,
-and the walls come out on the second port.
+the walls come out on the second port, and the lighting goes through a
+.vdb file with the plugin's writer and reader.
 
     PV_PLUGIN_PATH=<build-paraview>/lib/paraview-plugins/VolRad pvpython test_plugin.py
 
@@ -10,7 +11,9 @@ the scene's JSON), solved by the dense solver on one thread: the fields must
 agree to float precision.
 """
 import json
+import os
 import sys
+import tempfile
 
 import paraview.simple as pv
 from paraview import servermanager
@@ -102,5 +105,19 @@ bad.Epsilon = 1e-3
 bad.SceneJSON = "{ not json"
 check(servermanager.Fetch(bad).GetPointData().GetArray("IncidentRadiation") is None,
       "malformed scene JSON: no field")
+
+# 4. The lighting through a .vdb file: written with the plugin's writer
+#    (SaveData picks it by the extension), read back with its reader.
+vdb = os.path.join(tempfile.mkdtemp(), "lit.vdb")
+pv.SaveData(vdb, proxy=panel)
+read = pv.OpenDataFile(vdb)
+check(read is not None and read.GetXMLName() == "OpenVDBGridReader",
+      "OpenDataFile opens .vdb files with the plugin's reader")
+if read is not None:
+    read.GridName = "IncidentRadiation"
+    back = servermanager.Fetch(read).GetPointData().GetArray("IncidentRadiation")
+    values = [back.GetValue(i) for i in range(back.GetNumberOfValues())] if back else []
+    check(agree(values, g_panel) < 1e-6,
+          f"G written as a .vdb grid reads back the same ({len(values)} values)")
 
 sys.exit(1 if failures else 0)
