@@ -65,11 +65,13 @@ int vtkOpenVDBGridReader::RequestInformation(vtkInformation*,
                                              vtkInformationVector**,
                                              vtkInformationVector* outputVector)
 {
+  vtkInformation* out = outputVector->GetInformationObject(0);
   if (!this->ReadGrid()) {
+    // The pipeline stops here: the last good read must not stay behind.
+    vtkImageData::GetData(out)->Initialize();
     return 0;
   }
   const volrad::DenseVolume& v = *this->Volume;
-  vtkInformation* out = outputVector->GetInformationObject(0);
   const int extent[6] = { 0, v.dims[0] - 1, 0, v.dims[1] - 1, 0, v.dims[2] - 1 };
   out->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
   out->Set(vtkDataObject::SPACING(), v.spacing[0], v.spacing[1], v.spacing[2]);
@@ -93,6 +95,13 @@ int vtkOpenVDBGridReader::RequestData(vtkInformation*,
   vtkNew<vtkFloatArray> values;
   values->SetName(v.name.c_str());
   values->SetNumberOfComponents(v.components);
+  if (!values->Allocate(vtkIdType(v.values.size())) ||
+      vtkIdType(v.values.size()) != image->GetNumberOfPoints() * v.components) {
+    vtkErrorMacro(<< "cannot hold grid '" << v.name << "' in memory");
+    image->Initialize();
+    this->Volume.reset();
+    return 0;
+  }
   values->SetNumberOfTuples(image->GetNumberOfPoints());
   std::copy(v.values.begin(), v.values.end(), values->GetPointer(0));
   image->GetPointData()->SetScalars(values);

@@ -17,6 +17,11 @@
  * grids there are), an unsupported type or transform, a grid without
  * active voxels or with more than MaximumVoxels give an error and an empty
  * output. Needs VolRad built with OpenVDB (Debian's libopenvdb-dev).
+ *
+ * The grid's active box is known only once its tree is read, so
+ * RequestInformation reads the grid and RequestData hands it over (two
+ * copies of the values for a moment; a later update without a change reads
+ * the file again).
  */
 #ifndef vtkOpenVDBGridReader_h
 #define vtkOpenVDBGridReader_h

@@ -7,10 +7,12 @@
 #include "vtkErrorCode.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
+#include "vtkMatrix3x3.h"
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 
 #include <cstdio>
+#include <string>
 
 vtkStandardNewMacro(vtkOpenVDBGridWriter);
 
@@ -88,6 +90,13 @@ void vtkOpenVDBGridWriter::WriteData()
     return;
   }
 
+  if (!image->GetDirectionMatrix()->IsIdentity()) {
+    vtkErrorMacro(<< "'" << this->FileName
+                  << "': OpenVDB grids are written axis-aligned, and this image is rotated "
+                     "(its direction matrix is not the identity)");
+    this->SetErrorCode(vtkErrorCode::UnknownError);
+    return;
+  }
   int extent[6];
   image->GetExtent(extent);
   double spacing[3], origin[3];
@@ -104,10 +113,17 @@ void vtkOpenVDBGridWriter::WriteData()
     }
     v.components = a->GetNumberOfComponents();
     v.values.resize(std::size_t(a->GetNumberOfTuples()) * v.components);
+    bool active = false;
     for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i) {
       for (int c = 0; c < v.components; ++c) {
-        v.values[std::size_t(i) * v.components + c] = float(a->GetComponent(i, c));
+        const float x = float(a->GetComponent(i, c));
+        v.values[std::size_t(i) * v.components + c] = x;
+        active = active || x != this->Background;
       }
+    }
+    if (!active) {
+      vtkWarningMacro(<< "array '" << v.name << "' holds only the background value "
+                      << this->Background << ": its grid has no active voxels");
     }
     grids.push_back(std::move(v));
   }
@@ -117,7 +133,12 @@ void vtkOpenVDBGridWriter::WriteData()
     volrad::writeVdbGrids(partial, grids, this->Background);
   } catch (const std::exception& e) {
     std::remove(partial.c_str());
-    vtkErrorMacro(<< e.what());
+    // The message names the file the user asked for, not the temporary one.
+    std::string message = e.what();
+    for (std::size_t at; (at = message.find(partial)) != std::string::npos;) {
+      message.replace(at, partial.size(), path);
+    }
+    vtkErrorMacro(<< message);
     this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
     return;
   }

@@ -5,11 +5,14 @@
  *
  * Each array becomes a grid of its name: a float grid (1 component) or a
  * vec3s grid (3 components), voxel size the image's spacing, placed so that
- * voxel centres are the image's points (the reader, vtkOpenVDBGridReader,
- * gives the same image back). Values equal to Background stay inactive, so
- * empty space costs nothing in the file. Houdini, Blender and every OpenVDB
- * tool read the result: vtkVolumetricRadiosity's lighting (its
- * IncidentRadiation, IsotropicRadiosity, ... arrays) can be rendered there.
+ * voxel centres are the image's points. Values equal to Background stay
+ * inactive, so empty space costs nothing in the file; vtkOpenVDBGridReader
+ * gives back the box of the active voxels (the same image when its borders
+ * hold something else; an array of background only, a grid without active
+ * voxels, is written with a warning, and the reader refuses it). Rotated
+ * images (a direction matrix other than the identity) are refused. Houdini, Blender and every
+ * OpenVDB tool read the result: vtkVolumetricRadiosity's lighting (its IncidentRadiation,
+ * IsotropicRadiosity, ... arrays) can be rendered there.
  *
  * ArrayNames chooses the arrays (default: every point array with 1 or 3
  * components). The file is written next to FileName and renamed, so a

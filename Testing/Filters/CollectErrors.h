@@ -7,17 +7,22 @@
 #include "vtkCommand.h"
 #include "vtkExecutive.h"
 #include "vtkNew.h"
+#include "vtkWeakPointer.h"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace volrad::test {
 
 /// Appends the messages of the events it observes (vtkCommand::ErrorEvent,
-/// WarningEvent) to `text`. Not copied or moved: the command points at it.
+/// WarningEvent) to `text`, until it goes (then it stops observing). Not
+/// copied or moved: the command points at it.
 struct MessageCollector
 {
   std::string text;
   vtkNew<vtkCallbackCommand> command;
+  std::vector<std::pair<vtkWeakPointer<vtkObject>, unsigned long>> observed;
 
   MessageCollector()
   {
@@ -26,12 +31,20 @@ struct MessageCollector
       *static_cast<std::string*>(self) += static_cast<const char*>(data);
     });
   }
+  ~MessageCollector()
+  {
+    for (auto& [object, tag] : observed) {
+      if (object) {
+        object->RemoveObserver(tag);
+      }
+    }
+  }
   MessageCollector(const MessageCollector&) = delete;
   MessageCollector& operator=(const MessageCollector&) = delete;
 
-  unsigned long observe(vtkObject* object, unsigned long event = vtkCommand::ErrorEvent)
+  void observe(vtkObject* object, unsigned long event = vtkCommand::ErrorEvent)
   {
-    return object->AddObserver(event, command);
+    observed.emplace_back(object, object->AddObserver(event, command));
   }
 };
 
@@ -39,11 +52,9 @@ struct MessageCollector
 inline std::string updateCollectingErrors(vtkAlgorithm* f)
 {
   MessageCollector errors;
-  const unsigned long a = errors.observe(f);
-  const unsigned long b = errors.observe(f->GetExecutive());
+  errors.observe(f);
+  errors.observe(f->GetExecutive());
   f->Update();
-  f->RemoveObserver(a);
-  f->GetExecutive()->RemoveObserver(b);
   return errors.text;
 }
 

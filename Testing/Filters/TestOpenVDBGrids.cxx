@@ -139,11 +139,17 @@ TEST(OpenVDBGridReader, ReportsAbsentGridsFilesAndLimitsWithAnEmptyOutput)
     EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0) << c.file;
   }
 
-  // After an error, a good grid name reads.
+  // One reader: a good grid, then an absent one (no trace of the first
+  // left in the output), then the good one again.
   vtkNew<vtkOpenVDBGridReader> reader;
   reader->SetFileName(path.c_str());
+  reader->SetGridName("density");
+  EXPECT_EQ(updateCollectingErrors(reader), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 5 * 4 * 3);
   reader->SetGridName("temperature");
   EXPECT_NE(updateCollectingErrors(reader), "");
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetScalars(), nullptr);
   reader->SetGridName("density");
   EXPECT_EQ(updateCollectingErrors(reader), "");
   EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 5 * 4 * 3);
@@ -253,12 +259,16 @@ TEST(OpenVDBGridWriter, ReportsAbsentArraysAndUnwritablePathsWithoutAFile)
   {
     std::string path, array, expected;
   };
+  vtkNew<vtkImageData> rotated;
+  rotated->DeepCopy(image);
+  rotated->SetDirectionMatrix(0, -1, 0, 1, 0, 0, 0, 0, 1);
   for (const Case& c :
        { Case{ kOut + "/writer-absent.vdb", "Missing", "no numeric point array 'Missing'" },
-         Case{ "/nonexistent-dir/out.vdb", "G", "cannot write" } }) {
+         Case{ "/nonexistent-dir/out.vdb", "G", "cannot write '/nonexistent-dir/out.vdb'" },
+         Case{ kOut + "/writer-rotated.vdb", "G", "rotated" } }) {
     vtkNew<vtkOpenVDBGridWriter> writer;
     writer->SetFileName(c.path.c_str());
-    writer->SetInputData(image);
+    writer->SetInputData(c.expected == "rotated" ? rotated.Get() : image.Get());
     writer->AddArrayName(c.array.c_str());
     volrad::test::MessageCollector errors;
     errors.observe(writer);
@@ -268,4 +278,27 @@ TEST(OpenVDBGridWriter, ReportsAbsentArraysAndUnwritablePathsWithoutAFile)
     EXPECT_FALSE(std::ifstream(c.path)) << c.path;
     EXPECT_FALSE(std::ifstream(c.path + ".partial.vdb")) << c.path;
   }
+}
+
+TEST(OpenVDBGridWriter, AnArrayOfBackgroundOnlyIsAWarning)
+{
+  if (skipWithoutVdb()) {
+    GTEST_SKIP() << "VolRad was built without OpenVDB";
+  }
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(3, 3, 3);
+  vtkNew<vtkFloatArray> a;
+  a->SetName("AbsorbedPower");
+  a->SetNumberOfTuples(27);
+  a->Fill(0.0);
+  image->GetPointData()->AddArray(a);
+  const std::string path = kOut + "/writer-background.vdb";
+  vtkNew<vtkOpenVDBGridWriter> writer;
+  writer->SetFileName(path.c_str());
+  writer->SetInputData(image);
+  volrad::test::MessageCollector warnings;
+  warnings.observe(writer, vtkCommand::WarningEvent);
+  EXPECT_EQ(writer->Write(), 1);
+  EXPECT_NE(warnings.text.find("'AbsorbedPower' holds only the background"), std::string::npos)
+    << warnings.text;
 }

@@ -240,8 +240,14 @@ TEST(VolradCommand, OpenVdbInAndOut)
   std::ofstream(scene) << R"({"version": 1, "material": {"preset": "cloud"},
     "lights": [{"type": "directional", "direction": [0, 0, -1]}], "solver": {"method": "dense"}})";
   std::remove(out.c_str());
-  const CommandRun r = run(in + " --grid density --scene " + scene + " -o " + out);
+  const std::string png = kOut + "/blob-lit.png";
+  std::remove(png.c_str());
+  // The picture needs an X display: Xvfb's.
+  const CommandRun r =
+    run(in + " --grid density --scene " + scene + " -o " + out + " --png " + png, "xvfb-run -a ");
   ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(exists(png)) << r.output;
+  EXPECT_NE(r.output.find("energy emitted"), std::string::npos) << r.output;
   const volrad::DenseVolume g = volrad::readVdbGrid(out, "IncidentRadiation");
   EXPECT_EQ(g.dims, blob.dims); // every voxel lit: the whole box active
   EXPECT_NEAR((g.origin - blob.origin).norm(), 0.0, 1e-9);
