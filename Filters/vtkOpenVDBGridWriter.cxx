@@ -11,9 +11,6 @@
 #include "vtkObjectFactory.h"
 #include "vtkPointData.h"
 
-#include <cstdio>
-#include <string>
-
 vtkStandardNewMacro(vtkOpenVDBGridWriter);
 
 vtkOpenVDBGridWriter::vtkOpenVDBGridWriter() = default;
@@ -128,23 +125,10 @@ void vtkOpenVDBGridWriter::WriteData()
     grids.push_back(std::move(v));
   }
 
-  const std::string path = this->FileName, partial = path + ".partial.vdb";
   try {
-    volrad::writeVdbGrids(partial, grids, this->Background);
+    volrad::writeVdbGrids(this->FileName, grids, this->Background);
   } catch (const std::exception& e) {
-    std::remove(partial.c_str());
-    // The message names the file the user asked for, not the temporary one.
-    std::string message = e.what();
-    for (std::size_t at; (at = message.find(partial)) != std::string::npos;) {
-      message.replace(at, partial.size(), path);
-    }
-    vtkErrorMacro(<< message);
-    this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
-    return;
-  }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    std::remove(partial.c_str());
-    vtkErrorMacro(<< "cannot write '" << path << "'");
+    vtkErrorMacro(<< e.what());
     this->SetErrorCode(vtkErrorCode::CannotOpenFileError);
   }
 }

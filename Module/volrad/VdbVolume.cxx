@@ -9,6 +9,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -286,10 +287,17 @@ void writeVdbGrids(const std::string& path,
       grids.push_back(grid);
     }
   }
+  // Written next to the target and renamed: a failed write leaves no file.
+  const std::string partial = path + ".partial.vdb";
   try {
-    openvdb::io::File(path).write(grids);
+    openvdb::io::File(partial).write(grids);
   } catch (const std::exception& e) {
+    std::remove(partial.c_str());
     throw Error("cannot write '" + path + "': " + e.what());
+  }
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    std::remove(partial.c_str());
+    throw Error("cannot write '" + path + "'");
   }
 }
 

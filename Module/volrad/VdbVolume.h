@@ -43,7 +43,8 @@ DenseVolume readVdbGrid(const std::string& path,
                         std::size_t maxVoxels = std::size_t(512) * 512 * 512);
 
 /// Writes each volume as a float (1 component) or vec3s grid of the same
-/// geometry, values equal to `background` left inactive; replaces the file.
+/// geometry, values equal to `background` left inactive; replaces the file
+/// (written next to it and renamed: a failed write leaves no file).
 void writeVdbGrids(const std::string& path,
                    const std::vector<DenseVolume>& volumes,
                    float background = 0.f);
