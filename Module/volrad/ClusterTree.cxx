@@ -62,6 +62,7 @@ ClusterTree::ClusterTree(const Scene& scene, int channel, const VoxelPyramid& py
       }
     }
   }
+  buildSideTransmittance(scene, channel);
   patchArea_.resize(L);
   patchCentroid_.resize(L);
   patchArea_[0].resize(g.patchCount());
@@ -87,6 +88,180 @@ ClusterTree::ClusterTree(const Scene& scene, int channel, const VoxelPyramid& py
       patchCentroid_[l][p] = m / a;
     }
   }
+}
+
+void ClusterTree::buildSideTransmittance(const Scene& scene, int channel)
+{
+  const int L = levels();
+  const Grid& g = grids_[0];
+  exitTransmittance_.assign(std::size_t(voxelOffset_[L]) * 6, 1.0f);
+  sideSigma_.assign(L, {});
+  sideShift_.assign(L, {});
+  // Mean transmittance straight across each cell of the level below, per axis.
+  std::vector<std::array<float, 3>> across(g.voxelCount()), coarser;
+  for (Index v = 0; v < g.voxelCount(); ++v) {
+    for (int a = 0; a < 3; ++a) {
+      across[v][a] = float(std::exp(-scene.kappaTAt(v, channel) * g.spacing[a]));
+    }
+  }
+  for (int l = 1; l < L; ++l) {
+    const Grid& fine = grids_[l - 1];
+    const Grid& coarse = grids_[l];
+    coarser.assign(coarse.voxelCount(), { 1.0f, 1.0f, 1.0f });
+    sideSigma_[l].assign(coarse.voxelCount(), {});
+    sideShift_[l].assign(coarse.voxelCount(), {});
+    for (Index c = 0; c < coarse.voxelCount(); ++c) {
+      const auto ijk = coarse.ijk(c);
+      std::array<Index, 8> kid; // by octant (bit a: the upper half along axis a), -1 outside
+      for (int o = 0; o < 8; ++o) {
+        const int i = 2 * ijk[0] + (o & 1), j = 2 * ijk[1] + ((o >> 1) & 1),
+                  k = 2 * ijk[2] + (o >> 2);
+        kid[o] =
+          i < fine.dims[0] && j < fine.dims[1] && k < fine.dims[2] ? fine.index(i, j, k) : -1;
+      }
+      for (int a = 0; a < 3; ++a) {
+        const int bit = 1 << a;
+        double sum = 0.0;
+        int columns = 0;
+        for (int o = 0; o < 8; ++o) {
+          if ((o & bit) || (kid[o] < 0 && kid[o | bit] < 0)) {
+            continue;
+          }
+          const double t0 = kid[o] >= 0 ? across[kid[o]][a] : 1.0;
+          const double t1 = kid[o | bit] >= 0 ? across[kid[o | bit]][a] : 1.0;
+          sum += t0 * t1;
+          ++columns;
+        }
+        coarser[c][a] = columns > 0 ? float(sum / columns) : 1.0f;
+      }
+      std::array<float, 6>& sides = sideSigma_[l][c];
+      sides.fill(0.0f);
+      std::array<double, 6> weight{}, position{};
+      for (int o = 0; o < 8; ++o) {
+        if (kid[o] < 0) {
+          continue;
+        }
+        const Index node = voxelNode(l - 1, kid[o]);
+        for (int a = 0; a < 3; ++a) {
+          const int bit = 1 << a;
+          const Index sibling = kid[o ^ bit];
+          const double through = sibling >= 0 ? across[sibling][a] : 1.0;
+          // A voxel shows its face times its opacity along the axis, not its
+          // mean cross-section over all directions.
+          double own = 1.0;
+          if (l == 1 && voxelSigma_[kid[o]] > 0.0f) {
+            own = g.voxelVolume() / g.spacing[a] * (1.0 - double(across[kid[o]][a])) /
+                  double(voxelSigma_[kid[o]]);
+          }
+          // Towards the side the voxel node is on: nothing in between.
+          exitTransmittance_[std::size_t(node) * 6 + side(a, true)] =
+            float(own * ((o & bit) ? 1.0 : through));
+          exitTransmittance_[std::size_t(node) * 6 + side(a, false)] =
+            float(own * ((o & bit) ? through : 1.0));
+        }
+        const Vec3 kc = centroid(node);
+        for (int s = 0; s < 6; ++s) {
+          const double below = l == 1 ? double(voxelSigma_[kid[o]]) : sideSigma_[l - 1][kid[o]][s];
+          const double out = below * exitTransmittance_[std::size_t(node) * 6 + s];
+          sides[s] += float(out);
+          // Where along the axis that light leaves from: a voxel's from
+          // nearer its face the thicker it is (the mean of x in e^(-kappa x)).
+          const int a = s / 2;
+          double shift;
+          if (l == 1) {
+            const double t = across[kid[o]][a], x = -std::log(std::max(t, 1e-30));
+            const double depth = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - t / (1.0 - t);
+            shift = (s % 2 ? 1.0 : -1.0) * (0.5 - depth) * g.spacing[a];
+          } else {
+            shift = sideShift_[l - 1][kid[o]][s];
+          }
+          weight[s] += out;
+          position[s] += out * (kc[a] + shift);
+        }
+      }
+      const Vec3 centre = centroid(voxelNode(l, c));
+      for (int s = 0; s < 6; ++s) {
+        sideShift_[l][c][s] =
+          weight[s] > 0.0 ? float(position[s] / weight[s] - centre[s / 2]) : 0.0f;
+      }
+    }
+    across.swap(coarser);
+  }
+}
+
+double ClusterTree::sigmaTowards(Index node, const Vec3& w) const
+{
+  const int l = level(node);
+  if (isPatch(node) || l == 0) {
+    return sigma(node);
+  }
+  const auto& sides = sideSigma_[l][cell(node)];
+  const auto open = sideOpenness(node);
+  double weight[3], s = 0.0;
+  sideWeights(w, open.data(), weight);
+  for (int a = 0; a < 3; ++a) {
+    s += weight[a] * sides[side(a, w[a] > 0.0)];
+  }
+  return s;
+}
+
+double ClusterTree::frontFactor(Index node, const Vec3& w, double kappa) const
+{
+  const int l = level(node);
+  if (isPatch(node) || l == 0) {
+    return 1.0;
+  }
+  Vec3 lo, hi;
+  spaceBox(node, lo, hi);
+  // (1 - e^-x) / x: the mean of e^(-x u), u uniform in [0, 1].
+  auto mean = [](double x) { return x < 1e-6 ? 1.0 - 0.5 * x : -std::expm1(-x) / x; };
+  double g[3];
+  for (int a = 0; a < 3; ++a) {
+    g[a] = mean(kappa * std::abs(w[a]) * (hi[a] - lo[a]));
+  }
+  const auto& sides = sideSigma_[l][cell(node)];
+  const auto open = sideOpenness(node);
+  double weight[3], all = 0.0, front = 0.0;
+  sideWeights(w, open.data(), weight);
+  for (int a = 0; a < 3; ++a) {
+    const double s = weight[a] * sides[side(a, w[a] > 0.0)];
+    all += s;
+    front += s * g[(a + 1) % 3] * g[(a + 2) % 3];
+  }
+  return all > 0.0 ? front / all : 1.0;
+}
+
+void ClusterTree::emissionBox(Index node, const Vec3& w, Vec3& centre, Vec3& half) const
+{
+  centre = centroid(node);
+  half = Vec3::Zero();
+  const int l = level(node);
+  if (isPatch(node) || l == 0) {
+    return;
+  }
+  Vec3 lo, hi;
+  spaceBox(node, lo, hi);
+  const auto& shift = sideShift_[l][cell(node)];
+  for (int a = 0; a < 3; ++a) {
+    const double extent = hi[a] - lo[a];
+    const double moved = w[a] * w[a] * shift[side(a, w[a] > 0.0)];
+    centre[a] += moved;
+    half[a] = 0.5 * extent * std::max(0.0, 1.0 - 2.0 * std::abs(moved) / extent);
+  }
+}
+
+std::array<float, 6> ClusterTree::sideOpenness(Index node) const
+{
+  const int l = level(node);
+  std::array<float, 6> open;
+  open.fill(1.0f);
+  const double s = sigma(node);
+  if (!isPatch(node) && l > 0 && s > 0.0) {
+    for (int f = 0; f < 6; ++f) {
+      open[f] = float(std::min(1.0, sideSigma_[l][cell(node)][f] / s));
+    }
+  }
+  return open;
 }
 
 int ClusterTree::level(Index node) const
@@ -205,6 +380,17 @@ void ClusterTree::box(Index node, std::array<int, 3>& lo, std::array<int, 3>& hi
   lo[n] = hi[n] = faceIsMax(loc.face) ? dims[n] - 1 : 0;
 }
 
+void ClusterTree::spaceBox(Index node, Vec3& lo, Vec3& hi) const
+{
+  std::array<int, 3> l, h;
+  box(node, l, h);
+  const Grid& g = grids_[0];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = g.origin[a] + (l[a] - 0.5) * g.spacing[a];
+    hi[a] = g.origin[a] + (h[a] + 0.5) * g.spacing[a];
+  }
+}
+
 int ClusterTree::gap(Index a, Index b) const
 {
   std::array<int, 3> la, ha, lb, hb;
@@ -219,9 +405,10 @@ int ClusterTree::gap(Index a, Index b) const
 
 std::size_t ClusterTree::bytes() const
 {
-  std::size_t b = voxelSigma_.size() * sizeof(float);
+  std::size_t b = (voxelSigma_.size() + exitTransmittance_.size()) * sizeof(float);
   for (int l = 0; l < levels(); ++l) {
     b += sigma_[l].size() * sizeof(double) + centroid_[l].size() * sizeof(Vec3) +
+         (sideSigma_[l].size() + sideShift_[l].size()) * sizeof(std::array<float, 6>) +
          patchArea_[l].size() * sizeof(double) + patchCentroid_[l].size() * sizeof(Vec3);
   }
   return b;

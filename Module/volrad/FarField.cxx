@@ -61,6 +61,20 @@ FarField::FarField(const Scene& scene,
   const Index nodes = tree.size();
   centroid_.resize(nodes);
   forEach(nodes, [&](Index k) { centroid_[k] = tree.centroid(k); });
+  slopeLimit_.assign(nodes, 0.f);
+  forEach(nodes, [&](Index k) {
+    if (!tree.isPatch(k) && !tree.isLeaf(k)) {
+      slopeLimit_[k] = float(1.0 / tree.radius(k));
+    }
+  });
+  const Index nv0 = tree.grid(0).voxelCount();
+  const Index clusters = tree.voxelNode(tree.levels() - 1, 0) + 1 - tree.grid(0).voxelCount();
+  sideEmit_.assign(clusters, {});
+  sideOpen_.resize(clusters);
+  forEach(clusters, [&](Index k) { sideOpen_[k] = tree.sideOpenness(nv0 + k); });
+  sidePhi_.assign(clusters, {});
+  moment_.assign(nodes, Vec3::Zero());
+  gradient_.assign(nodes, Vec3::Zero());
   emit_.assign(nodes, 0.0);
   phi_.assign(nodes, 0.0);
   if (fronts_) {
@@ -155,36 +169,54 @@ void FarField::gather(const double* x,
     emit_[tree_.patchNode(0, p)] = tree_.sigma(tree_.patchNode(0, p)) * x[el_.patchElement(p)];
   });
   for (int l = 1; l < L; ++l) {
-    {
-      forEachNodeOfLevel(tree_, l, [&](Index node, bool patches) {
-        std::array<Index, 8> kids;
-        const int k = tree_.children(node, kids);
-        double s = 0.0, d = 0.0;
-        Vec3 m = Vec3::Zero();
-        for (int i = 0; i < k; ++i) {
-          s += emit_[kids[i]];
-          if (fronts_ && !patches) {
-            d += frontEmit_[kids[i]];
-            m += frontMoment_[kids[i]];
+    forEachNodeOfLevel(tree_, l, [&](Index node, bool patches) {
+      std::array<Index, 8> kids;
+      const int k = tree_.children(node, kids);
+      double s = 0.0, d = 0.0;
+      Vec3 m = Vec3::Zero(), moment = Vec3::Zero();
+      std::array<double, 6> sides{};
+      for (int i = 0; i < k; ++i) {
+        s += emit_[kids[i]];
+        if (!patches) {
+          moment += moment_[kids[i]] + emit_[kids[i]] * (centroid_[kids[i]] - centroid_[node]);
+          for (int f = 0; f < 6; ++f) { // seen through the siblings in front
+            sides[f] += (l == 1 ? emit_[kids[i]] : sideEmit_[kids[i] - nv][f]) *
+                        double(tree_.toParentSide(kids[i], f));
           }
         }
-        emit_[node] = s;
         if (fronts_ && !patches) {
-          frontEmit_[node] = d;
-          frontMoment_[node] = m;
+          d += frontEmit_[kids[i]];
+          m += frontMoment_[kids[i]];
         }
-      });
-    }
+      }
+      emit_[node] = s;
+      if (!patches) {
+        moment_[node] = moment;
+        sideEmit_[node - nv] = sides;
+      }
+      if (fronts_ && !patches) {
+        frontEmit_[node] = d;
+        frontMoment_[node] = m;
+      }
+    });
   }
 
   // Gather over the links into receiving node b.
   auto gatherInto = [&](Index b) {
     const bool patchB = tree_.isPatch(b), leafB = tree_.isLeaf(b);
     const bool frontB = fronts_ && !patchB && leafB && el_.front[b] >= 0;
-    Vec3 cb = Vec3::Zero(), nb = Vec3::Zero();
-    bool haveCb = false;
+    const Vec3 cb = centroid_[b];
+    Vec3 nb = Vec3::Zero();
+    if (patchB) {
+      nb = faceInwardNormal(tree_.face(b));
+    } else if (frontB) {
+      nb = unitNormal(scene_, b);
+    }
+    const double limitB = slopeLimit_[b];
+    const bool clusterB = limitB > 0.0;
+    std::array<double, 6> sides{};
     double phi = 0.0, direct = 0.0, front = 0.0;
-    Vec3 psi = Vec3::Zero();
+    Vec3 psi = Vec3::Zero(), gradient = Vec3::Zero();
     for (Index k = links_.start[b]; k < links_.start[b + 1]; ++k) {
       const Index a = links_.source[k];
       const bool patchA = tree_.isPatch(a);
@@ -193,19 +225,25 @@ void FarField::gather(const double* x,
       if (e == 0.0 && !frontA) {
         continue;
       }
-      const bool needW = patchA || frontA || patchB || (fronts_ && !patchB);
-      Vec3 w = Vec3::Zero(); // from a towards b
-      if (needW) {
-        if (!haveCb) {
-          cb = centroid_[b];
-          if (patchB) {
-            nb = faceInwardNormal(tree_.face(b));
-          } else if (frontB) {
-            nb = unitNormal(scene_, b);
-          }
-          haveCb = true;
+      const bool clusterA = slopeLimit_[a] > 0.0f;
+      if (!clusterA && !clusterB && !patchA && !patchB && !fronts_) {
+        phi += e * double(links_.gamma[k]); // voxel to voxel: no direction needed
+        continue;
+      }
+      const Vec3 ab = cb - centroid_[a];
+      const double r = ab.norm();
+      const Vec3 w = ab / r; // from a towards b
+      // A cluster emits towards b what its sides facing b let out, and
+      // 1/r^2 grows by 2/r per length of its elements' offsets towards b
+      // (to first order, limited so that no element's weight is negative).
+      if (clusterA) {
+        const auto& f = sideEmit_[a - nv];
+        double weight[3];
+        ClusterTree::sideWeights(w, sideOpen_[a - nv].data(), weight);
+        e = std::min(2.0 / r, double(slopeLimit_[a])) * w.dot(moment_[a]);
+        for (int x = 0; x < 3; ++x) {
+          e += weight[x] * f[ClusterTree::side(x, w[x] > 0.0)];
         }
-        w = (cb - centroid_[a]).normalized();
       }
       if (patchA) {
         e *= std::max(0.0, faceInwardNormal(tree_.face(a)).dot(w));
@@ -222,7 +260,16 @@ void FarField::gather(const double* x,
         phi += c * std::max(0.0, -nb.dot(w));
         continue;
       }
-      phi += c;
+      if (clusterB) { // received on b's sides facing a, falling away from a
+        double weight[3];
+        ClusterTree::sideWeights(-w, sideOpen_[b - nv].data(), weight);
+        for (int x = 0; x < 3; ++x) {
+          sides[ClusterTree::side(x, w[x] < 0.0)] += weight[x] * c;
+        }
+        gradient -= (std::min(2.0 / r, limitB) * c) * w;
+      } else {
+        phi += c;
+      }
       if (frontB) {
         direct += c;
         front += -nb.dot(w) > 0.0 ? c : 0.0; // light arriving from the front
@@ -231,6 +278,10 @@ void FarField::gather(const double* x,
       }
     }
     phi_[b] = phi;
+    gradient_[b] = gradient;
+    if (clusterB) {
+      sidePhi_[b - nv] = sides;
+    }
     if (fronts_ && !patchB) {
       psi_[b] = psi;
       if (leafB) {
@@ -266,6 +317,20 @@ void FarField::gather(const double* x,
         const int k = tree_.children(node, kids);
         for (int i = 0; i < k; ++i) {
           phi_[kids[i]] += phi_[node];
+          if (!patches) { // through the siblings in front; first-order variation
+            const auto& in = sidePhi_[node - nv];
+            double seen = 0.0;
+            for (int f = 0; f < 6; ++f) {
+              const double t = tree_.toParentSide(kids[i], f);
+              if (l > 1) {
+                sidePhi_[kids[i] - nv][f] += in[f] * t;
+              } else {
+                seen += in[f] * t;
+              }
+            }
+            phi_[kids[i]] += seen + gradient_[node].dot(centroid_[kids[i]] - centroid_[node]);
+            gradient_[kids[i]] += gradient_[node];
+          }
           if (fronts_ && !patches) {
             psi_[kids[i]] += psi_[node];
           }
@@ -305,7 +370,12 @@ std::size_t FarField::bytes() const
   return (emit_.size() + phi_.size() + frontEmit_.size() + leafDirect_.size() + leafFront_.size() +
           scale_.size()) *
            sizeof(double) +
-         (frontMoment_.size() + psi_.size() + centroid_.size()) * sizeof(Vec3);
+         (frontMoment_.size() + psi_.size() + centroid_.size() + moment_.size() +
+          gradient_.size()) *
+           sizeof(Vec3) +
+         slopeLimit_.size() * sizeof(float) +
+         (sideEmit_.size() + sidePhi_.size()) * sizeof(std::array<double, 6>) +
+         sideOpen_.size() * sizeof(std::array<float, 6>);
 }
 
 } // namespace volrad

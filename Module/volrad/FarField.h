@@ -5,6 +5,15 @@
 /// order-1 mask), gather over the links into each receiving node, push
 /// (each node hands what it received down to its elements).
 ///
+/// A cluster sends and receives through its sides facing the link
+/// (ClusterTree): what its children let out of each side is pulled up
+/// through the siblings in front of them, and what arrives at a side is
+/// pushed down the same way. To first order in the offsets of its elements
+/// from its centroid, 1/r^2 along a link grows by 2/r per length towards
+/// the other end: each cluster also pulls its emission's moment and pushes
+/// the gradient of what it received (limited so that no element's weight
+/// goes negative). Both keep the exchange symmetric.
+///
 /// The links' operator F is then balanced symmetrically, D F D with D
 /// diagonal within [1/2, 2], towards each element receiving exactly its far
 /// weight from the near field (NearField::far) for radiosity 1 on every
@@ -67,10 +76,21 @@ private:
   /// Per node, its centroid (the gather's directions: ClusterTree::centroid
   /// finds a node's level first, at every link).
   std::vector<Vec3> centroid_;
+  /// Per cluster node (0 elsewhere): 1 / its radius, the limit of the
+  /// first-order variation of a link's exchange across it.
+  std::vector<float> slopeLimit_;
+  /// Per voxel cluster: ClusterTree::sideOpenness.
+  std::vector<std::array<float, 6>> sideOpen_;
   // Work arrays, per tree node (mutable: apply is logically const).
   mutable std::vector<double> emit_, phi_, scaled_;
   mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;
   mutable std::vector<Vec3> frontMoment_, psi_;
+  /// Per node: its elements' emission moment about its centroid (pull) and
+  /// the gradient of what it received (push).
+  mutable std::vector<Vec3> moment_, gradient_;
+  /// Per voxel cluster (node - voxel count): its emission through, and what
+  /// it received on, each of its six sides (ClusterTree::side).
+  mutable std::vector<std::array<double, 6>> sideEmit_, sidePhi_;
 };
 
 } // namespace volrad

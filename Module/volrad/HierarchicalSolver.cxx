@@ -285,7 +285,7 @@ Solution solveHierarchical(const Scene& scene,
   // element vectors, hierarchy, direct light, fields), then the links.
   const double memoryLimit =
     opt.memoryLimitBytes > 0.0 ? opt.memoryLimitBytes : 0.5 * double(physicalMemoryBytes());
-  const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 1e-4;
+  const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 3e-4;
   const double perVoxel = 4.0 * std::pow(2 * opt.nearRadius + 1, 3) + 400.0 + 40.0 * scene.channels;
   const double baseBytes = perVoxel * double(scene.grid.voxelCount());
   // The fewest links a voxel needs: about 130 at linkTolerance 1e-7 on the

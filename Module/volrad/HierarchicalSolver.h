@@ -44,9 +44,9 @@ struct HierarchicalOptions
   /// below epsilon times its radiosity (plus 1e-3 of the largest, so that
   /// dark elements do not rule). Links are refined until the power a link
   /// may carry wrongly is below linkTolerance times the total power leaving
-  /// all elements; by default linkTolerance = 1e-4 epsilon.
+  /// all elements; by default linkTolerance = 3e-4 epsilon.
   double epsilon = 1e-3;
-  double linkTolerance = 0.0; ///< 0: 1e-4 epsilon
+  double linkTolerance = 0.0; ///< 0: 3e-4 epsilon
   int maxIterations = 1000000;
   Iteration iteration = Iteration::Automatic;
   int nearRadius = 1;

@@ -31,12 +31,6 @@ struct Accepted
   int level;
 };
 
-double halfChord(const Grid& g)
-{
-  const Vec3& h = g.spacing;
-  return 2.0 * h.prod() / (2.0 * (h[0] * h[1] + h[1] * h[2] + h[0] * h[2]));
-}
-
 /// log of what a voxel leaf collides with or emits towards w, relative to
 /// its cross-section, per unit of the transmittance measured from its
 /// centre: integral over the voxel of kappa exp(kappa (x - c).w) dx, which
@@ -81,19 +75,70 @@ double exitDistance(const ClusterTree& t, Index n, const Vec3& c, const Vec3& w)
   if (t.isPatch(n)) {
     return 0.0;
   }
-  std::array<int, 3> lo, hi;
-  t.box(n, lo, hi);
-  const Grid& g = t.grid(0);
+  Vec3 lo, hi;
+  t.spaceBox(n, lo, hi);
   double d = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a) {
-    const double h = g.spacing[a], o = g.origin[a];
-    if (w[a] > 0.0) {
-      d = std::min(d, (o + (hi[a] + 0.5) * h - c[a]) / w[a]);
-    } else if (w[a] < 0.0) {
-      d = std::min(d, (o + (lo[a] - 0.5) * h - c[a]) / w[a]);
+    if (w[a] != 0.0) {
+      d = std::min(d, ((w[a] > 0.0 ? hi[a] : lo[a]) - c[a]) / w[a]);
     }
   }
   return std::max(0.0, d);
+}
+
+/// A voxel end's factor exceeds its own attenuation by kappa h / 2 at most;
+/// past this a line's depth is so large that nothing arrives anyway.
+constexpr double kMaxLogGain = 50.0;
+
+/// How far along the unit w from c the plane normal to w through node n's
+/// foremost corner lies: there every line parallel to w has left the box
+/// (what its light loses on the way is ClusterTree::frontFactor). 0 for
+/// patches.
+double frontPlane(const ClusterTree& t, Index n, const Vec3& c, const Vec3& w)
+{
+  if (t.isPatch(n)) {
+    return 0.0;
+  }
+  Vec3 lo, hi;
+  t.spaceBox(n, lo, hi);
+  double d = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    d += ((w[a] > 0.0 ? hi[a] : lo[a]) - c[a]) * w[a];
+  }
+  return std::max(0.0, d);
+}
+
+/// Mean over the lines between the boxes the two ends' light towards each
+/// other comes from (ClusterTree::emissionBox; thick clusters: their facing
+/// surfaces), 2x2x2 Gauss points in each, of exp(-depth (1/cos - 1)) / l^2:
+/// 1/r^2 and the transmittance relative to the line between their centres
+/// (depth), whose medium a line at an angle to it crosses for 1/cos longer.
+/// w from a to b.
+double meanSpread(const ClusterTree& t, Index a, Index b, const Vec3& w, double depth)
+{
+  Vec3 ca, ha, cb, hb;
+  t.emissionBox(a, w, ca, ha);
+  t.emissionBox(b, -w, cb, hb);
+  const double q = 1.0 / std::sqrt(3.0);
+  const int na = ha.isZero() ? 1 : 8, nb = hb.isZero() ? 1 : 8;
+  auto point = [q](const Vec3& c, const Vec3& h, int k) {
+    return Vec3(c[0] + (k & 1 ? q : -q) * h[0],
+                c[1] + (k & 2 ? q : -q) * h[1],
+                c[2] + (k & 4 ? q : -q) * h[2]);
+  };
+  const Vec3 axis = (cb - ca).normalized();
+  double sum = 0.0;
+  for (int i = 0; i < na; ++i) {
+    const Vec3 p = point(ca, ha, i);
+    for (int j = 0; j < nb; ++j) {
+      const Vec3 d = point(cb, hb, j) - p;
+      const double l2 = d.squaredNorm(), along = std::abs(d.dot(axis));
+      // An oblique line crosses the medium between for 1/cos longer.
+      const double stretch = along > 0.0 ? std::sqrt(l2) / along : 1.0;
+      sum += std::exp(-std::min(depth * (stretch - 1.0), kMaxLogGain)) / l2;
+    }
+  }
+  return sum / (na * nb);
 }
 
 /// Mean of d^2 / |x - y|^2 over two voxels whose centres are d apart, by
@@ -175,9 +220,37 @@ int leafPoints(const ClusterTree& t, Index n, std::array<Vec3, 8>& out)
   return 4;
 }
 
-/// A voxel end's factor exceeds its own attenuation by kappa h / 2 at most;
-/// past this a line's depth is so large that nothing arrives anyway.
-constexpr double kMaxLogGain = 50.0;
+/// Whether the box spanning voxels a and b holds one extinction: checked on
+/// the pyramid's cells of the level where it spans at most two per axis.
+bool homogeneousBetween(const VoxelPyramid& p,
+                        const std::array<int, 3>& a,
+                        const std::array<int, 3>& b)
+{
+  std::array<int, 3> lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::min(a[k], b[k]);
+    hi[k] = std::max(a[k], b[k]);
+  }
+  int l = 0;
+  while (l + 1 < p.levels() &&
+         ((hi[0] >> l) - (lo[0] >> l) > 1 || (hi[1] >> l) - (lo[1] >> l) > 1 ||
+          (hi[2] >> l) - (lo[2] >> l) > 1)) {
+    ++l;
+  }
+  const Grid& g = p.grid(l);
+  const double first = p.minKappaT(l, g.index(lo[0] >> l, lo[1] >> l, lo[2] >> l));
+  for (int i = lo[0] >> l; i <= hi[0] >> l; ++i) {
+    for (int j = lo[1] >> l; j <= hi[1] >> l; ++j) {
+      for (int k = lo[2] >> l; k <= hi[2] >> l; ++k) {
+        const Index c = g.index(i, j, k);
+        if (p.minKappaT(l, c) != first || p.maxKappaT(l, c) != first) {
+          return false;
+        }
+      }
+    }
+  }
+  return true;
+}
 
 /// gamma of a link between two leaves a few voxels apart, where neither the
 /// medium between them nor the geometry is one line's: the transmittance
@@ -195,6 +268,12 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
   const VoxelPyramid& pyramid = t.pyramid();
   if (!t.isPatch(a) && !t.isPatch(b)) {
     const Vec3 w = (cb - ca) / rc;
+    const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
+    if (homogeneousBetween(pyramid, t.grid(0).ijk(a), t.grid(0).ijk(b))) {
+      // Every parallel line crosses the same medium: one is enough.
+      const double depth = pyramid.opticalDepth(ca, cb, 0).estimate;
+      return spread * std::exp(std::min(ends - depth, kMaxLogGain)) / (kPi * rc * rc);
+    }
     double depth[8], least = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 8; ++k) {
       depth[k] = pyramid.opticalDepth(pa[k], pb[k], 0).estimate;
@@ -204,7 +283,6 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
     for (int k = 0; k < 8; ++k) {
       tau += std::exp(least - depth[k]);
     }
-    const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
     return spread * std::exp(std::min(ends - least, kMaxLogGain)) * tau / (8.0 * kPi * rc * rc);
   }
   auto cosine = [&](Index n, const Vec3& w) {
@@ -287,19 +365,34 @@ double linkGamma(const ClusterTree& tree, Index a, Index b, double depthToleranc
     return 0.0;
   }
   const Vec3 w = ab / r;
-  // Voxel leaves: the whole line and their factor; clusters: from half a
-  // voxel chord off the centroid, the attenuation their voxels' effective
-  // cross-sections hold (the optical-size term of the error covers the rest).
-  const double chord = halfChord(tree.grid(0));
-  const bool cutA = !tree.isPatch(a) && !tree.isLeaf(a), cutB = !tree.isPatch(b) && !tree.isLeaf(b);
-  const double t0 = cutA ? chord : 0.0, t1 = r - (cutB ? chord : 0.0);
+  // Voxel leaves: the whole line and their factor; clusters: from their
+  // box, since what they let out of it their sides hold (ClusterTree).
+  const double t0 = tree.isLeaf(a) ? 0.0 : frontPlane(tree, a, ca, w);
+  const double t1 = r - (tree.isLeaf(b) ? 0.0 : frontPlane(tree, b, cb, -w));
   double depth = 0.0;
   if (t1 > t0) {
     depth = tree.pyramid().opticalDepthAdaptive(ca + t0 * w, ca + t1 * w, depthTolerance).estimate;
   }
   const double ends = (tree.isLeaf(a) ? logLeafFactor(tree, a, w) : 0.0) +
                       (tree.isLeaf(b) ? logLeafFactor(tree, b, -w) : 0.0);
-  return std::exp(std::min(ends - depth, kMaxLogGain)) / (kPi * r * r);
+  // The medium beside a cluster's sides, which its light crosses before all
+  // of it has passed the box's foremost corner: the next radius of the line.
+  auto beside = [&](Index n, double from, double to) {
+    if (tree.isLeaf(n)) {
+      return 0.0;
+    }
+    const double d = std::min(tree.radius(n), std::abs(to - from));
+    if (!(d > 0.0)) {
+      return tree.meanKappaT(n);
+    }
+    const double s = from < to ? 1.0 : -1.0;
+    return tree.pyramid()
+             .opticalDepth(ca + from * w, ca + (from + s * d) * w, tree.level(n))
+             .estimate /
+           d;
+  };
+  return std::exp(std::min(ends - depth, kMaxLogGain)) * tree.frontFactor(a, w, beside(a, t0, t1)) *
+         tree.frontFactor(b, -w, beside(b, t1, t0)) * meanSpread(tree, a, b, w, depth) / kPi;
 }
 
 LinkSet refineLinks(const ClusterTree& tree,

@@ -6,15 +6,21 @@
 /// how they carry it.
 ///
 /// A link between nodes A and B stands for the exchange areas between all
-/// their elements, S(A, B) ~ sigma_A(w) sigma_B(-w) gamma, with
-/// gamma = tau / (pi r^2) from centroid to centroid (tau marched in the voxel
-/// pyramid within a tolerance; at a cluster end less half a voxel chord,
-/// whose attenuation its voxels' effective cross-sections hold; a voxel end
-/// is marched from its centre, times its exact far-field factor
-/// kappa V prod sinh(z_a)/z_a / sigma, z_a = kappa h_a w_a / 2) and sigma(w)
-/// a voxel cluster's cross-section (isotropic) or a patch node's area times
-/// the cosine towards the other end. Front sides inside clusters emit and
-/// receive through an order-1 spherical-harmonic mask (exact at voxels).
+/// their elements, S(A, B) ~ sigma_A(w) sigma_B(-w) gamma. A voxel end is
+/// its centre: the line is marched from there, times its exact far-field
+/// factor kappa V prod sinh(z_a)/z_a / sigma, z_a = kappa h_a w_a / 2. A
+/// cluster end shows what its sides facing the other end let out
+/// (ClusterTree::sigmaTowards: its voxels seen through the ones in front),
+/// measured at the plane normal to w through its box's foremost corner, so
+/// the line is marched from that plane on, times what the light loses
+/// between its sides and that plane (ClusterTree::frontFactor, at the
+/// extinction of the line's next radius beyond it), and gamma takes the mean
+/// of 1/r^2 and of the line's transmittance over the lines between the boxes
+/// each end's light comes from (its surface when it is thick); tau marched
+/// in the voxel pyramid within a tolerance. sigma(w) of a patch node is its
+/// area times the cosine towards the other end. Front sides inside clusters
+/// emit and receive through an order-1 spherical-harmonic mask (exact at
+/// voxels).
 ///
 /// Refinement: the pair (A, B) is linked when their voxel boxes are more
 /// than the near-field radius apart and the power the link may carry wrongly,
@@ -59,7 +65,7 @@ struct LinkSet
   /// Per receiving node, the links into it: [start[b], start[b + 1]).
   std::vector<Index> start;
   std::vector<std::int32_t> source;
-  std::vector<float> gamma;             ///< tau / (pi r^2)
+  std::vector<float> gamma;             ///< tau / (pi r^2), as above
   long long pairs = 0;                  ///< links (each serves both directions)
   std::vector<long long> pairsPerLevel; ///< by the finer end's level
 

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Cluster exchange areas against the dense solver's: the sum of S over the
-// voxel pairs of two clusters, for clusters further and further apart. A
-// link's exchange is sigma_A sigma_B gamma (LinkSet.h).
+// voxel pairs of two clusters, for clusters further and further apart, along
+// an axis and diagonals. A link's exchange is sigma_A(w) sigma_B(-w) gamma
+// (LinkSet.h, ClusterTree::sigmaTowards).
 #include "TestScenes.h"
 #include "volrad/ClusterTree.h"
 #include "volrad/ExchangeAreas.h"
@@ -14,26 +15,29 @@ using namespace volrad::test;
 
 namespace {
 
-/// Mean over all cell pairs of `level` offset by `offset` cells along x of
+/// Sum over all cell pairs of `level` offset by `offset` cells of
 /// (cluster estimate, dense sum).
 std::pair<double, double> meanExchange(const Scene& s,
                                        const ExchangeAreas& dense,
                                        const ClusterTree& tree,
                                        const VoxelPyramid& pyramid,
                                        int level,
-                                       int offset)
+                                       const std::array<int, 3>& offset)
 {
   const Grid& cg = pyramid.grid(level);
   const int size = 1 << level;
   double estimate = 0.0, exact = 0.0;
   for (Index a = 0; a < cg.voxelCount(); ++a) {
     const auto ca = cg.ijk(a);
-    if (ca[0] + offset >= cg.dims[0]) {
+    if (ca[0] + offset[0] >= cg.dims[0] || ca[1] + offset[1] >= cg.dims[1] ||
+        ca[2] + offset[2] >= cg.dims[2]) {
       continue;
     }
-    const Index b = cg.index(ca[0] + offset, ca[1], ca[2]);
+    const Index b = cg.index(ca[0] + offset[0], ca[1] + offset[1], ca[2] + offset[2]);
     const Index na = tree.voxelNode(level, a), nb = tree.voxelNode(level, b);
-    estimate += tree.sigma(na) * tree.sigma(nb) * linkGamma(tree, na, nb, 1e-3);
+    const Vec3 w = (tree.centroid(nb) - tree.centroid(na)).normalized();
+    estimate +=
+      tree.sigmaTowards(na, w) * tree.sigmaTowards(nb, -w) * linkGamma(tree, na, nb, 1e-3);
     const auto cb = cg.ijk(b);
     for (Index u = 0; u < s.grid.voxelCount(); ++u) {
       const auto cu = s.grid.ijk(u);
@@ -60,35 +64,70 @@ TEST(ClusterExchange, EffectiveCrossSectionLimits)
   EXPECT_NEAR(effectiveCrossSection(1e6, h), 0.5 * (0.5 + 2.0 + 1.0), 1e-9);  // thick: S / 4
 }
 
-TEST(ClusterExchange, ApproachesTheDenseSumsWithDistance)
+// A cluster shows towards a partner what its sides facing it let out (its
+// voxels seen through the ones in front), from the plane through its box's
+// foremost corner, and the link takes 1/r^2 and the transmittance between
+// over the lines joining the boxes its light comes from. Before, a link ran
+// from half a voxel chord off each centroid with every voxel's mean cross-
+// section: 14% too weak for 2^3 clusters two cells apart in the lumpy medium,
+// 22% for 4^3; in homogeneous media 17% and 38% at half a mean free path per
+// voxel, 72% and 98% at two.
+TEST(ClusterExchange, MatchesTheDenseSumsAlongAxesAndDiagonals)
 {
-  Scene s = cubeScene(16);
-  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0); });
-  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0, 1.0); });
   const ProgressCallback none;
-  const ExchangeAreas dense =
-    computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(none, 0, 1));
-  const VoxelPyramid pyramid(s, 0);
-  const ClusterTree tree(s, 0, pyramid);
-  double previous = 1e9;
-  for (int offset : { 2, 3, 5, 7 }) {
-    const auto [estimate, exact] = meanExchange(s, dense, tree, pyramid, 1, offset);
-    const double err = std::abs(estimate / exact - 1.0);
-    std::printf("[measured] 2^3 clusters %d cells apart: cluster S / dense S - 1 = %+.4f\n",
-                offset,
-                estimate / exact - 1.0);
-    EXPECT_LT(err, previous + 0.01);
-    previous = err;
+  {
+    Scene s = cubeScene(16);
+    fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0); });
+    fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 0.5, 4.0, 1.0); });
+    const ExchangeAreas dense =
+      computeExchangeAreas(s, 0, QuadratureSettings{}, {}, ProgressRange(none, 0, 1));
+    const VoxelPyramid pyramid(s, 0);
+    const ClusterTree tree(s, 0, pyramid);
+    for (const auto& [level, offset] : std::vector<std::pair<int, int>>{
+           { 1, 2 }, { 1, 3 }, { 1, 5 }, { 1, 7 }, { 2, 2 }, { 2, 3 } }) {
+      const auto [estimate, exact] = meanExchange(s, dense, tree, pyramid, level, { offset, 0, 0 });
+      std::printf("[measured] lumpy medium, %d^3 clusters %d cells apart: cluster S / dense S - 1 "
+                  "= %+.4f\n",
+                  1 << level,
+                  offset,
+                  estimate / exact - 1.0);
+      EXPECT_LT(std::abs(estimate / exact - 1.0), 0.08);
+    }
   }
-  EXPECT_LT(previous, 0.03);
-  for (int offset : { 2, 3 }) {
-    const auto [estimate, exact] = meanExchange(s, dense, tree, pyramid, 2, offset);
-    std::printf("[measured] 4^3 clusters %d cells apart: cluster S / dense S - 1 = %+.4f\n",
-                offset,
-                estimate / exact - 1.0);
-    // Close, large clusters: the single centroid line misses the spread of
-    // path lengths (exp is convex), what the refinement oracle must catch.
-    EXPECT_LT(std::abs(estimate / exact - 1.0), 0.25);
+  for (const double kappaH : { 0.5, 2.0 }) {
+    Scene s = cubeScene(12);
+    for (auto& k : s.kappaA) {
+      k = float(0.3 * kappaH * 12);
+    }
+    for (auto& k : s.sigmaI) {
+      k = float(0.7 * kappaH * 12);
+    }
+    QuadratureSettings fine;
+    fine.voxelPointsPerAxis = 8;
+    fine.voxelDirections = 16;
+    const ExchangeAreas dense = computeExchangeAreas(s, 0, fine, {}, ProgressRange(none, 0, 1));
+    const VoxelPyramid pyramid(s, 0);
+    const ClusterTree tree(s, 0, pyramid);
+    for (const auto& [level, offset] :
+         std::vector<std::pair<int, int>>{ { 1, 2 }, { 1, 3 }, { 2, 2 } }) {
+      for (int diagonal = 0; diagonal < 3; ++diagonal) {
+        const std::array<int, 3> o{ offset, diagonal > 0 ? offset : 0, diagonal > 1 ? offset : 0 };
+        const auto [estimate, exact] = meanExchange(s, dense, tree, pyramid, level, o);
+        const double err = estimate / exact - 1.0;
+        std::printf("[measured] kappa h %.1f, %d^3 clusters (%d, %d, %d) cells apart: cluster S / "
+                    "dense S - 1 = %+.4f\n",
+                    kappaH,
+                    1 << level,
+                    o[0],
+                    o[1],
+                    o[2],
+                    err);
+        // Along an axis every line crosses the same medium; obliquely the
+        // sides' mix and the corner plane leave thick clusters too weak
+        // (the known limit, a third at two mean free paths per voxel).
+        EXPECT_LT(std::abs(err), diagonal == 0 ? 0.08 : (kappaH < 1.0 ? 0.2 : 0.5));
+      }
+    }
   }
 }
 
