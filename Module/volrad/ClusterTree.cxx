@@ -150,7 +150,8 @@ void ClusterTree::buildSideTransmittance(const Scene& scene, int channel)
           // mean cross-section over all directions.
           double own = 1.0;
           if (l == 1 && voxelSigma_[kid[o]] > 0.0f) {
-            own = g.voxelVolume() / g.spacing[a] * (1.0 - double(across[kid[o]][a])) /
+            own = g.voxelVolume() / g.spacing[a] *
+                  -std::expm1(-scene.kappaTAt(kid[o], channel) * g.spacing[a]) /
                   double(voxelSigma_[kid[o]]);
           }
           // Towards the side the voxel node is on: nothing in between.
@@ -169,8 +170,8 @@ void ClusterTree::buildSideTransmittance(const Scene& scene, int channel)
           const int a = s / 2;
           double shift;
           if (l == 1) {
-            const double t = across[kid[o]][a], x = -std::log(std::max(t, 1e-30));
-            const double depth = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - t / (1.0 - t);
+            const double x = scene.kappaTAt(kid[o], channel) * g.spacing[a];
+            const double depth = x < 1e-4 ? 0.5 - x / 12.0 : 1.0 / x - 1.0 / std::expm1(x);
             shift = (s % 2 ? 1.0 : -1.0) * (0.5 - depth) * g.spacing[a];
           } else {
             shift = sideShift_[l - 1][kid[o]][s];
@@ -245,8 +246,12 @@ void ClusterTree::emissionBox(Index node, const Vec3& w, Vec3& centre, Vec3& hal
   for (int a = 0; a < 3; ++a) {
     const double extent = hi[a] - lo[a];
     const double moved = w[a] * w[a] * shift[side(a, w[a] > 0.0)];
-    centre[a] += moved;
-    half[a] = 0.5 * extent * std::max(0.0, 1.0 - 2.0 * std::abs(moved) / extent);
+    const double h = 0.5 * extent * std::max(0.0, 1.0 - 2.0 * std::abs(moved) / extent);
+    // Within the cluster's box (its centroid may sit off the middle).
+    const double from = std::max(lo[a], centre[a] + moved - h);
+    const double to = std::min(hi[a], centre[a] + moved + h);
+    centre[a] = 0.5 * (from + to);
+    half[a] = 0.5 * std::max(0.0, to - from);
   }
 }
 

@@ -62,7 +62,9 @@ public:
   /// The side of a box facing along axis a, positive or negative.
   static int side(int axis, bool positive) { return 2 * axis + (positive ? 1 : 0); }
   /// Mean transmittance from voxel node n to its parent's side `side`
-  /// (1 for the root and for patch nodes).
+  /// (1 for the root and for patch nodes); for a voxel, times what it shows
+  /// along that axis relative to its cross-section (face area times
+  /// opacity over sigma, above 1 for thick, flat voxels).
   float toParentSide(Index n, int side) const
   {
     return isPatch(n) ? 1.0f : exitTransmittance_[std::size_t(n) * 6 + side];

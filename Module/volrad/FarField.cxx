@@ -252,7 +252,8 @@ void FarField::gather(const double* x,
         if (a < nv) { // a voxel leaf (voxel nodes come first)
           e += unitNormal(scene_, a).dot(w) > 0.0 ? d : 0.0;
         } else {
-          e += std::clamp(0.5 * d + 0.75 * frontMoment_[a].dot(w), 0.0, d);
+          e +=
+            std::clamp(0.5 * d + 0.75 * frontMoment_[a].dot(w), std::min(0.0, d), std::max(0.0, d));
         }
       }
       const double c = e * double(links_.gamma[k]);
@@ -353,8 +354,9 @@ void FarField::gather(const double* x,
       const Index f = el_.front[v];
       const double pushed = phi_[v] - leafDirect_[v];
       const double front =
-        leafFront_[v] +
-        std::clamp(0.5 * pushed + 0.75 * unitNormal(scene_, v).dot(psi_[v]), 0.0, pushed);
+        leafFront_[v] + std::clamp(0.5 * pushed + 0.75 * unitNormal(scene_, v).dot(psi_[v]),
+                                   std::min(0.0, pushed),
+                                   std::max(0.0, pushed));
       y[f] += (normalised ? scale_[f] : 1.0) * tree_.sigma(v) * front;
     }
   });

@@ -11,8 +11,13 @@
 /// pushed down the same way. To first order in the offsets of its elements
 /// from its centroid, 1/r^2 along a link grows by 2/r per length towards
 /// the other end: each cluster also pulls its emission's moment and pushes
-/// the gradient of what it received (limited so that no element's weight
-/// goes negative). Both keep the exchange symmetric.
+/// the gradient of what it received (the slope limited to 1 / its radius).
+/// Both keep the exchange symmetric. The moment is of the emission before
+/// the sides' transmittance (measured: that of the emission through the
+/// sides gave 2x the error of G at coarse link tolerances), so an element
+/// hidden behind others in a thick cluster may get a slightly negative
+/// weight: with the balancing's limits, the known slightly negative G in
+/// deep shadow.
 ///
 /// The links' operator F is then balanced symmetrically, D F D with D
 /// diagonal within [1/2, 2], towards each element receiving exactly its far
