@@ -81,6 +81,7 @@ FarField::FarField(const Scene& scene,
     frontEmit_.assign(nodes, 0.0);
     frontMoment_.assign(nodes, Vec3::Zero());
     psi_.assign(nodes, Vec3::Zero());
+    open_.assign(nodes, 0.0);
     leafDirect_.assign(tree.grid(0).voxelCount(), 0.0);
     leafFront_.assign(tree.grid(0).voxelCount(), 0.0);
   }
@@ -215,7 +216,7 @@ void FarField::gather(const double* x,
     const double limitB = slopeLimit_[b];
     const bool clusterB = limitB > 0.0;
     std::array<double, 6> sides{};
-    double phi = 0.0, direct = 0.0, front = 0.0;
+    double phi = 0.0, direct = 0.0, front = 0.0, open = 0.0;
     Vec3 psi = Vec3::Zero(), gradient = Vec3::Zero();
     for (Index k = links_.start[b]; k < links_.start[b + 1]; ++k) {
       const Index a = links_.source[k];
@@ -276,6 +277,7 @@ void FarField::gather(const double* x,
         front += -nb.dot(w) > 0.0 ? c : 0.0; // light arriving from the front
       } else if (fronts_ && !leafB) {
         psi -= c * w; // towards the source
+        open += c;
       }
     }
     phi_[b] = phi;
@@ -285,6 +287,7 @@ void FarField::gather(const double* x,
     }
     if (fronts_ && !patchB) {
       psi_[b] = psi;
+      open_[b] = open;
       if (leafB) {
         leafDirect_[b] = direct;
         leafFront_[b] = front;
@@ -334,6 +337,7 @@ void FarField::gather(const double* x,
           }
           if (fronts_ && !patches) {
             psi_[kids[i]] += psi_[node];
+            open_[kids[i]] += open_[node];
           }
         }
       });
@@ -352,7 +356,9 @@ void FarField::gather(const double* x,
     y[e] += (normalised ? scale_[e] : 1.0) * tree_.sigma(v) * phi_[v];
     if (fronts_ && el_.front[v] >= 0) {
       const Index f = el_.front[v];
-      const double pushed = phi_[v] - leafDirect_[v];
+      // Front sides emit into clusters as if these were transparent
+      // (frontEmit_), so they receive from them the same way: symmetric.
+      const double pushed = open_[v];
       const double front =
         leafFront_[v] + std::clamp(0.5 * pushed + 0.75 * unitNormal(scene_, v).dot(psi_[v]),
                                    std::min(0.0, pushed),
@@ -369,8 +375,8 @@ void FarField::gather(const double* x,
 
 std::size_t FarField::bytes() const
 {
-  return (emit_.size() + phi_.size() + frontEmit_.size() + leafDirect_.size() + leafFront_.size() +
-          scale_.size()) *
+  return (emit_.size() + phi_.size() + open_.size() + frontEmit_.size() + leafDirect_.size() +
+          leafFront_.size() + scale_.size()) *
            sizeof(double) +
          (frontMoment_.size() + psi_.size() + centroid_.size() + moment_.size() +
           gradient_.size()) *

@@ -90,6 +90,9 @@ private:
   mutable std::vector<double> emit_, phi_, scaled_;
   mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;
   mutable std::vector<Vec3> frontMoment_, psi_;
+  /// With front sides: per node, what its clusters received, without the
+  /// sides' transmittance (front sides' share; they emit the same way).
+  mutable std::vector<double> open_;
   /// Per node: its elements' emission moment about its centroid (pull) and
   /// the gradient of what it received (push).
   mutable std::vector<Vec3> moment_, gradient_;
