@@ -10,13 +10,10 @@
 // With --mc, G of the cube along the x axis through the light is compared
 // with the track-length Monte Carlo estimator of the same medium.
 #include "BenchmarkScenes.h"
+#include "ChildProcess.h"
 
 #include "volrad/HierarchicalSolver.h"
 #include "volrad/MonteCarlo.h"
-
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
@@ -162,27 +159,10 @@ int main(int argc, char* argv[])
               "notes");
   for (const std::string& name : scenes) {
     for (int n : sizes) {
-      int pipefd[2];
-      if (pipe(pipefd) != 0) {
-        return 1;
-      }
-      std::fflush(stdout);
-      const pid_t pid = fork();
-      if (pid == 0) {
-        close(pipefd[0]);
-        const Figures f = run(name, n, options);
-        const bool ok = write(pipefd[1], &f, sizeof(f)) == sizeof(f);
-        _exit(ok ? 0 : 1);
-      }
-      close(pipefd[1]);
       Figures f;
-      const bool got = read(pipefd[0], &f, sizeof(f)) == sizeof(f);
-      close(pipefd[0]);
-      int status = 0;
-      struct rusage usage;
-      wait4(pid, &status, 0, &usage);
-      if (!got) {
-        std::printf("%-8s %4d^3 crashed (status %d)\n", name.c_str(), n, status);
+      const bench::ChildResult child = bench::runInChild([&] { return run(name, n, options); }, f);
+      if (!child.finished) {
+        std::printf("%-8s %4d^3 crashed (status %d)\n", name.c_str(), n, child.status);
       } else if (f.error[0]) {
         std::printf("%-8s %4d^3 error: %s\n", name.c_str(), n, f.error);
       } else {
@@ -193,7 +173,7 @@ int main(int argc, char* argv[])
                     f.nearSeconds,
                     f.linkSeconds,
                     f.iterationSeconds,
-                    usage.ru_maxrss / 1024.0,
+                    child.peakMiB,
                     f.links,
                     f.shots,
                     f.iterations,

@@ -72,13 +72,17 @@ openvdb::FloatGrid::Ptr buildVdb(const Scene& s)
 /// Exact optical depth through the VDB: the hierarchical DDA finds the
 /// intervals of active nodes, a voxel DDA integrates inside them.
 double vdbDepth(openvdb::tools::VolumeRayIntersector<openvdb::FloatGrid>& inter,
-  const openvdb::FloatGrid& grid, const Ray& r)
+                const openvdb::FloatGrid& grid,
+                const Ray& r)
 {
   using RayT = openvdb::math::Ray<double>;
   const Vec3 d = (r.b - r.a);
   const double length = d.norm();
   // Ray times must be > 0.
-  RayT wray(openvdb::Vec3d(r.a[0], r.a[1], r.a[2]), openvdb::Vec3d(d[0], d[1], d[2]) / length, 1e-12, length);
+  RayT wray(openvdb::Vec3d(r.a[0], r.a[1], r.a[2]),
+            openvdb::Vec3d(d[0], d[1], d[2]) / length,
+            1e-12,
+            length);
   if (!inter.setWorldRay(wray)) {
     return 0.0;
   }
@@ -110,8 +114,12 @@ int main(int argc, char* argv[])
   }
   const int rayCount = 20000;
   const auto rays = randomRays(rayCount);
-  std::printf("%-8s %5s | %-28s | %-28s | %s\n", "scene", "n", "pyramid: build s, MiB, us/ray",
-    "OpenVDB: build s, MiB, us/ray", "max |depth diff|");
+  std::printf("%-8s %5s | %-28s | %-28s | %s\n",
+              "scene",
+              "n",
+              "pyramid: build s, MiB, us/ray",
+              "OpenVDB: build s, MiB, us/ray",
+              "max |depth diff|");
   for (const char* name : { "phantom", "cloud", "cube" }) {
     for (int n : sizes) {
       const Scene s = bench::benchmarkScene(name, n);
@@ -143,8 +151,16 @@ int main(int argc, char* argv[])
       for (int i = 0; i < rayCount; ++i) {
         diff = std::max(diff, std::abs(depthP[i] - depthV[i]) / (1.0 + depthP[i]));
       }
-      std::printf("%-8s %5d | %8.2f %9.1f %9.2f | %8.2f %9.1f %9.2f | %.2g\n", name, n, pyramidBuild,
-        pyramidBytes / 1048576.0, pyramidRay, vdbBuild, vdbBytes / 1048576.0, vdbRay, diff);
+      std::printf("%-8s %5d | %8.2f %9.1f %9.2f | %8.2f %9.1f %9.2f | %.2g\n",
+                  name,
+                  n,
+                  pyramidBuild,
+                  pyramidBytes / 1048576.0,
+                  pyramidRay,
+                  vdbBuild,
+                  vdbBytes / 1048576.0,
+                  vdbRay,
+                  diff);
       std::fflush(stdout);
     }
   }

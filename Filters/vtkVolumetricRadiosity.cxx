@@ -459,8 +459,7 @@ void vtkVolumetricRadiosity::SetWallFace(int face,
   this->Modified();
 }
 
-namespace
-{
+namespace {
 /// A face number given as a double: itself when it is a whole 0-5, else 6
 /// (which the int setters refuse, naming it).
 int faceNumber(double face)
@@ -499,8 +498,7 @@ void vtkVolumetricRadiosity::RemoveAllFaceSettings()
   this->Modified();
 }
 
-namespace
-{
+namespace {
 /// Clears the faces set as `type` (1 open, 2 wall); true when one was.
 bool clearFaces(std::array<std::array<double, 7>, 6>& faces, double type)
 {
@@ -682,6 +680,7 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
       description.solver.epsilon = this->Epsilon;
     }
     description.solver.memoryBudgetBytes = this->MemoryBudget * 1024.0 * 1024.0;
+    description.solver.emptySpaceFields = !this->SkipEmptySpace;
     if (this->MaterialScalars && *this->MaterialScalars) {
       description.material.scalars = this->MaterialScalars;
     }
@@ -766,6 +765,7 @@ void vtkVolumetricRadiosity::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SceneJSON: " << (this->SceneJSON ? this->SceneJSON : "(none)") << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "MemoryBudget: " << this->MemoryBudget << " MiB\n";
+  os << indent << "SkipEmptySpace: " << (this->SkipEmptySpace ? "On" : "Off") << "\n";
   os << indent << "MaterialPreset: " << (this->MaterialPreset ? this->MaterialPreset : "(none)")
      << "\n";
   os << indent << "ExtinctionFunction: " << this->ExtinctionFunction.Get() << "\n";

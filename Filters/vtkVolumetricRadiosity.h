@@ -123,6 +123,20 @@ public:
   ///@}
 
   ///@{
+  /**
+   * A sparse solve (the hierarchical solver; the dense one computes every
+   * voxel): the fields of voxels without
+   * medium (kappa_t = 0, empty space) are not computed and are 0, like the
+   * inactive background of an OpenVDB grid; empty space then costs no links,
+   * views or time, and the medium's fields are those of the full solve.
+   * Off (default): G of empty space too.
+   */
+  vtkSetMacro(SkipEmptySpace, vtkTypeBool);
+  vtkGetMacro(SkipEmptySpace, vtkTypeBool);
+  vtkBooleanMacro(SkipEmptySpace, vtkTypeBool);
+  ///@}
+
+  ///@{
   /** Threads of the solve; 0 (default) uses all cores, 1 is deterministic. */
   vtkSetClampMacro(NumberOfThreads, int, 0, 4096);
   vtkGetMacro(NumberOfThreads, int);
@@ -211,6 +225,7 @@ protected:
   char* SceneJSON = nullptr;
   int NumberOfThreads = 0;
   double MemoryBudget = 0.0;
+  vtkTypeBool SkipEmptySpace = 0;
   char* MaterialPreset = nullptr;
   vtkSmartPointer<vtkPiecewiseFunction> ExtinctionFunction;
   vtkSmartPointer<vtkPiecewiseFunction> AlbedoFunction;

@@ -46,7 +46,7 @@ namespace {
 
 const char* kUsage =
   R"(usage: volrad INPUT [--scene SCENE.json] -o OUTPUT.vti|.vdb [--png PICTURE.png] [--grid NAME]
-              [--shrink N] [--threads N] [--memory-budget MIB]
+              [--shrink N] [--threads N] [--memory-budget MIB] [--skip-empty-space]
 
 Solves volumetric radiosity in the volume INPUT lit as the scene file says
 (docs/scene-format.md; without one, the defaults and the input's arrays
@@ -72,6 +72,9 @@ options:
   --memory-budget MIB
                  refuse, before allocating, a solve whose estimate passes MIB
                  mebibytes (default: half the physical memory; dense: 4 GiB)
+  --skip-empty-space
+                 a sparse solve: voxels without medium get no fields (0, the
+                 background of a .vdb output) and cost no links or time
   -h, --help     this text
 )";
 
@@ -205,6 +208,7 @@ int main(int argc, char* argv[])
   std::string input, scene, output, png, grid;
   int threads = 0, shrink = 1;
   double memoryBudget = 0.0;
+  bool skipEmptySpace = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* what) -> std::string {
@@ -251,6 +255,8 @@ int main(int argc, char* argv[])
           return fail("--memory-budget takes a positive number of MiB, not '" + v + "'");
         }
         memoryBudget = mib;
+      } else if (arg == "--skip-empty-space") {
+        skipEmptySpace = true;
       } else if (!arg.empty() && arg[0] == '-') {
         return fail("unknown option '" + arg + "'\n" + kUsage);
       } else if (input.empty()) {
@@ -339,6 +345,7 @@ int main(int argc, char* argv[])
   }
   filter->SetNumberOfThreads(threads);
   filter->SetMemoryBudget(memoryBudget);
+  filter->SetSkipEmptySpace(skipEmptySpace);
   filter->AddObserver(vtkCommand::ErrorEvent, onError);
   filter->AddObserver(vtkCommand::WarningEvent, onWarning);
   vtkNew<vtkCallbackCommand> onProgress;

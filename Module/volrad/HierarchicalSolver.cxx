@@ -286,14 +286,25 @@ Solution solveHierarchical(const Scene& scene,
   const double memoryLimit =
     opt.memoryLimitBytes > 0.0 ? opt.memoryLimitBytes : 0.5 * double(physicalMemoryBytes());
   const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 3e-4;
-  const double perVoxel = 4.0 * std::pow(2 * opt.nearRadius + 1, 3) + 400.0 + 40.0 * scene.channels;
-  const double baseBytes = perVoxel * double(scene.grid.voxelCount());
+  // Voxels with links and near rows: those holding medium (in some channel),
+  // and the empty ones too unless their fields are skipped.
+  Index mediumVoxels = 0;
+  for (Index v = 0; v < scene.grid.voxelCount(); ++v) {
+    bool medium = false;
+    for (int c = 0; c < scene.channels && !medium; ++c) {
+      medium = scene.kappaTAt(v, c) > 0.0;
+    }
+    mediumVoxels += medium ? 1 : 0;
+  }
+  const double linkedVoxels = double(opt.emptySpaceFields ? scene.grid.voxelCount() : mediumVoxels);
+  const double baseBytes = (400.0 + 40.0 * scene.channels) * double(scene.grid.voxelCount()) +
+                           4.0 * std::pow(2 * opt.nearRadius + 1, 3) * double(mediumVoxels);
   // The fewest links a voxel needs: about 130 at linkTolerance 1e-7 on the
   // benchmark scenes (61-mfp cube; 1100-1900 in the cloud and the phantom),
   // and about 2.2x fewer per decade of tolerance. A solve that would surely
   // pass the budget is refused now, not after its near field.
   const double fewestLinks =
-    double(scene.grid.voxelCount()) * std::max(10.0, 100.0 * std::pow(1e-7 / linkTolerance, 0.35));
+    linkedVoxels * std::max(10.0, 100.0 * std::pow(1e-7 / linkTolerance, 0.35));
   const double linkBytes = fewestLinks * double(kBytesPerLink);
   if (baseBytes + linkBytes > memoryLimit) {
     std::ostringstream msg;
@@ -318,6 +329,7 @@ Solution solveHierarchical(const Scene& scene,
   NearFieldOptions nearOptions;
   nearOptions.radius = opt.nearRadius;
   nearOptions.quadrature = opt.quadrature;
+  nearOptions.emptyViews = opt.emptySpaceFields;
   // Large grids: fewer lines per heterogeneous voxel (homogeneous
   // neighbourhoods keep the fine shared quadrature).
   if (nv > 64 * 64 * 64) {
@@ -436,6 +448,7 @@ Solution solveHierarchical(const Scene& scene,
         // The first pass only estimates where the light goes: coarser links.
         refinement.tolerance = pass == 0 ? kFirstPassCoarsening * linkTolerance : linkTolerance;
         refinement.viewSigma = viewSigma;
+        refinement.emptyViews = opt.emptySpaceFields;
         refinement.maxLinks = std::max<std::size_t>(1, maxLinks);
         // Links serve every channel: each node's radiosity relative to its
         // channel's total power, the largest over the channels.
@@ -521,6 +534,9 @@ Solution solveHierarchical(const Scene& scene,
           x,
           collided,
           [&](Index v) {
+            if (!opt.emptySpaceFields) {
+              return 0.0; // not asked for (a sparse solve)
+            }
             double s = farView[v] + dl.track[v] / V;
             for (Index k = near.viewStart[v]; k < near.viewStart[v + 1]; ++k) {
               s += near.viewValue[k] * x[near.viewColumn[k]];
@@ -530,6 +546,9 @@ Solution solveHierarchical(const Scene& scene,
           [&](Index v) {
             // No front side: half of the scattered light, the direct light exactly.
             const std::size_t o = std::size_t(v) * C + ch;
+            if (!opt.emptySpaceFields && el.full[v] < 0) {
+              return 0.0;
+            }
             return 0.5 * (sol.G[o] - dl.track[v] / V) + dl.trackFront[v] / V;
           },
           sol);

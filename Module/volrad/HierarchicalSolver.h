@@ -50,6 +50,14 @@ struct HierarchicalOptions
   int maxIterations = 1000000;
   Iteration iteration = Iteration::Automatic;
   int nearRadius = 1;
+  /// Empty voxels (kappa_t = 0) only let light through, yet their fields
+  /// (G of empty space) cost views and links like the medium's. false: a
+  /// sparse solve that skips them: their fields are 0 (like the inactive
+  /// background of an OpenVDB grid), empty space costs no links, no views
+  /// and no iterations, and the medium's fields and the energy terms are
+  /// those of the full solve (the links between medium and walls are the
+  /// same ones).
+  bool emptySpaceFields = true;
   /// The solve refuses with volrad::Error, before it allocates what would
   /// pass it, when its structures would need more (0: half the machine's
   /// physical memory).

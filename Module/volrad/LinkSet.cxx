@@ -19,16 +19,18 @@ namespace volrad {
 
 namespace {
 
+// Node indices in 32 bits (refineLinks checks the tree's size): candidates
+// and accepted links are most of the refinement's peak memory.
 struct Pair
 {
-  Index a, b;
+  std::int32_t a, b;
 };
 
 struct Accepted
 {
-  Index a, b;
+  std::int32_t a, b;
   float gamma;
-  int level;
+  std::int32_t level;
 };
 
 /// log of what a voxel leaf collides with or emits towards w, relative to
@@ -402,11 +404,14 @@ LinkSet refineLinks(const ClusterTree& tree,
   if (opt.radiosity.size() != std::size_t(tree.size())) {
     throw Error("link refinement needs one radiosity estimate per tree node");
   }
+  if (tree.size() > Index(std::numeric_limits<std::int32_t>::max())) {
+    throw Error("the cluster tree is too large for 32-bit link indices");
+  }
   std::vector<Pair> todo;
   const auto roots = tree.roots();
   for (std::size_t i = 0; i < roots.size(); ++i) {
     for (std::size_t j = i; j < roots.size(); ++j) {
-      todo.push_back({ roots[i], roots[j] });
+      todo.push_back({ std::int32_t(roots[i]), std::int32_t(roots[j]) });
     }
   }
   const double budget = opt.tolerance * opt.powerScale;
@@ -435,7 +440,7 @@ LinkSet refineLinks(const ClusterTree& tree,
               const int n = tree.children(a, ka);
               for (int i = 0; i < n; ++i) {
                 for (int j = i; j < n; ++j) {
-                  out.push_back({ ka[i], ka[j] });
+                  out.push_back({ std::int32_t(ka[i]), std::int32_t(ka[j]) });
                 }
               }
               continue;
@@ -443,6 +448,9 @@ LinkSet refineLinks(const ClusterTree& tree,
             const double sa = tree.sigma(a), sb = tree.sigma(b);
             if (sa <= 0.0 && sb <= 0.0) {
               continue; // two empty clusters exchange nothing
+            }
+            if (!opt.emptyViews && (sa <= 0.0 || sb <= 0.0)) {
+              continue; // an empty end's views are not asked for
             }
             const bool leafA = tree.isLeaf(a), leafB = tree.isLeaf(b);
             const int gap = tree.gap(a, b);
@@ -492,7 +500,10 @@ LinkSet refineLinks(const ClusterTree& tree,
             }
             if (link) {
               if (gamma > 0.0) {
-                keep.push_back({ a, b, float(gamma), std::min(tree.level(a), tree.level(b)) });
+                keep.push_back({ std::int32_t(a),
+                                 std::int32_t(b),
+                                 float(gamma),
+                                 std::min(tree.level(a), tree.level(b)) });
               }
               continue;
             }
@@ -501,12 +512,12 @@ LinkSet refineLinks(const ClusterTree& tree,
             if (splitA) {
               const int n = tree.children(a, ka);
               for (int i = 0; i < n; ++i) {
-                out.push_back({ ka[i], b });
+                out.push_back({ std::int32_t(ka[i]), std::int32_t(b) });
               }
             } else {
               const int n = tree.children(b, kb);
               for (int i = 0; i < n; ++i) {
-                out.push_back({ a, kb[i] });
+                out.push_back({ std::int32_t(a), std::int32_t(kb[i]) });
               }
             }
           }
@@ -538,9 +549,6 @@ LinkSet refineLinks(const ClusterTree& tree,
   // a comparison sort of tens of millions of links takes seconds and cannot
   // be interrupted), then each receiver's links ordered by source so that
   // the order does not depend on the threads.
-  if (tree.size() > Index(std::numeric_limits<std::int32_t>::max())) {
-    throw Error("the cluster tree is too large for 32-bit link indices");
-  }
   const auto parts = partsOf(accepted);
   LinkSet out;
   out.pairsPerLevel.assign(tree.levels(), 0);

@@ -53,6 +53,10 @@ struct LinkRefinement
   /// Cross-section an empty voxel counts with in the error estimate, so that
   /// the views of empty space (their G) are refined like a typical voxel's.
   double viewSigma = 0.0;
+  /// Links with an end that holds no medium (its views only) are left out:
+  /// a sparse solve, where empty space costs no links. The others are the
+  /// same links as with them.
+  bool emptyViews = true;
   /// Refinement stops with volrad::Error past this many links (0: no limit).
   std::size_t maxLinks = 0;
 };

@@ -100,7 +100,7 @@ double raysPerSurface(const QuadratureSettings& q, const Grid& g)
 double NearField::diagonal(Index e) const
 {
   if (e < elements.fullCount) {
-    return stencil[std::size_t(elements.voxelOf[e]) * stencilSize() + offsetIndex(0, 0, 0)];
+    return stencil[std::size_t(e) * stencilSize() + offsetIndex(0, 0, 0)];
   }
   for (Index k = extraStart[e]; k < extraStart[e + 1]; ++k) {
     if (extraColumn[k] == e) {
@@ -120,7 +120,7 @@ void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagon
       if (e < el.fullCount) {
         const Index v = el.voxelOf[e];
         const auto c = g.ijk(v);
-        const float* row = stencil.data() + std::size_t(v) * w;
+        const float* row = stencil.data() + std::size_t(e) * w;
         for (int dz = -r; dz <= r; ++dz) {
           if (c[2] + dz < 0 || c[2] + dz >= g.dims[2]) {
             continue;
@@ -184,7 +184,7 @@ NearField computeNearField(const Scene& scene,
   const ExchangeElements& el = out.elements;
   const Index nv = g.voxelCount(), n = el.size();
   const int width = out.stencilSize();
-  out.stencil.assign(std::size_t(nv) * width, 0.f);
+  out.stencil.assign(std::size_t(el.fullCount) * width, 0.f);
 
   // Voxels sharing one homogeneous neighbourhood share one row.
   std::vector<std::int32_t> shared(opt.reuseHomogeneous ? nv : 0, -1);
@@ -236,7 +236,7 @@ NearField computeNearField(const Scene& scene,
           if (self < 0) {
             continue;
           }
-          float* dst = out.stencil.data() + std::size_t(v) * width;
+          float* dst = out.stencil.data() + std::size_t(self) * width;
           if (!shared.empty() && shared[v] >= 0) {
             const double* src = sharedRows.data() + std::size_t(shared[v]) * width;
             for (int o = 0; o < width; ++o) {
@@ -348,8 +348,8 @@ NearField computeNearField(const Scene& scene,
         continue;
       }
       const double wu = weight(el.full[u]);
-      float& a = out.stencil[std::size_t(v) * width + o];
-      float& b = out.stencil[std::size_t(u) * width + out.offsetIndex(-dx, -dy, -dz)];
+      float& a = out.stencil[std::size_t(el.full[v]) * width + o];
+      float& b = out.stencil[std::size_t(el.full[u]) * width + out.offsetIndex(-dx, -dy, -dz)];
       const float s = float((wv * double(a) + wu * double(b)) / (wv + wu));
       a = s;
       b = s;
@@ -399,7 +399,7 @@ NearField computeNearField(const Scene& scene,
   tbb::parallel_for(Index(0), n, [&](Index e) {
     double nearSum = 0.0;
     if (e < el.fullCount) {
-      const float* row = out.stencil.data() + std::size_t(el.voxelOf[e]) * width;
+      const float* row = out.stencil.data() + std::size_t(e) * width;
       for (int o = 0; o < width; ++o) {
         nearSum += row[o];
       }
@@ -422,7 +422,7 @@ NearField computeNearField(const Scene& scene,
   // the empty voxels around a head or a cloud are many.
   progress.sub(0.9, 0.99).forBlocks(nv, 256, 1024, [&](Index b0, Index b1) {
     tbb::parallel_for(b0, b1, [&](Index v) {
-      if (el.full[v] >= 0) {
+      if (el.full[v] >= 0 || !opt.emptyViews) {
         return;
       }
       const auto c = g.ijk(v);

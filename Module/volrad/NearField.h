@@ -34,15 +34,19 @@ struct NearFieldOptions
   QuadratureSettings quadrature;
   bool reuseHomogeneous = true;
   QuadratureSettings homogeneousQuadrature{ 12, 16, 12, 16, 8, 64 };
+  /// The view rows of empty voxels (their G); without them empty space
+  /// costs nothing here (a sparse solve).
+  bool emptyViews = true;
 };
 
 struct NearField
 {
   int radius = 1;
   ExchangeElements elements;
-  /// Full side to full side, per voxel (2 radius + 1)^3 values of
+  /// Full side to full side, per full side e (voxel v = elements.voxelOf[e],
+  /// so empty voxels cost nothing) (2 radius + 1)^3 values of
   /// S(v, v + offset), offset index (dx + r) + (2r + 1)((dy + r) + (2r + 1)(dz + r));
-  /// zero past the domain and where either voxel has kappa_t = 0.
+  /// zero past the domain and where the other voxel has kappa_t = 0.
   std::vector<float> stencil;
   /// The other near pairs (a front side or a patch at one end or both), as
   /// rows over elements: row e is [extraStart[e], extraStart[e + 1]).
@@ -63,10 +67,6 @@ struct NearField
   {
     const int w = 2 * radius + 1;
     return (dx + radius) + w * ((dy + radius) + w * (dz + radius));
-  }
-  double value(Index v, int dx, int dy, int dz) const
-  {
-    return stencil[std::size_t(v) * stencilSize() + offsetIndex(dx, dy, dz)];
   }
   /// S(e, e), the self term.
   double diagonal(Index e) const;

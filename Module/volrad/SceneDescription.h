@@ -52,6 +52,11 @@ struct SolverSettings
   /// memory; dense: 4 GiB). Not a scene-file key: the filter's MemoryBudget,
   /// volrad's --memory-budget.
   double memoryBudgetBytes = 0.0;
+  /// Whether the hierarchical solver computes the fields of empty voxels
+  /// (kappa_t = 0); false: a sparse solve, empty space costs no links or
+  /// views and its fields are 0. Not a scene-file key: the filter's
+  /// SkipEmptySpace, volrad's --skip-empty-space.
+  bool emptySpaceFields = true;
 };
 
 struct SceneDescription

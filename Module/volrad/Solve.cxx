@@ -34,6 +34,7 @@ Solution solve(const Scene& scene,
   o.threads = threads;
   o.progress = progress;
   o.memoryLimitBytes = settings.memoryBudgetBytes;
+  o.emptySpaceFields = settings.emptySpaceFields;
   return solveHierarchical(scene, o);
 }
 

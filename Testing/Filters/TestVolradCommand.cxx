@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -40,6 +41,27 @@ CommandRun run(const std::string& args, const std::string& prefix = "")
 bool exists(const std::string& path)
 {
   return volrad::test::fileExists(path);
+}
+
+/// A "density" grid of voxels 0.25 wide, f of the squared distance (in
+/// voxels) from c (in voxel indices).
+template<class F>
+volrad::DenseVolume densityGrid(const std::array<int, 3>& dims, const volrad::Vec3& c, F&& f)
+{
+  volrad::DenseVolume d;
+  d.name = "density";
+  d.dims = dims;
+  d.spacing = volrad::Vec3(0.25, 0.25, 0.25);
+  const double cx = c[0], cy = c[1], cz = c[2];
+  for (int z = 0; z < dims[2]; ++z) {
+    for (int y = 0; y < dims[1]; ++y) {
+      for (int x = 0; x < dims[0]; ++x) {
+        const double r2 = (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz);
+        d.values.push_back(float(f(r2)));
+      }
+    }
+  }
+  return d;
 }
 
 const std::string kData = VOLRAD_DATA_DIR;
@@ -220,20 +242,11 @@ TEST(VolradCommand, OpenVdbInAndOut)
     GTEST_SKIP() << "built without OpenVDB";
   }
   // A density blob as a grid, placed off the origin.
-  volrad::DenseVolume blob;
-  blob.name = "density";
-  blob.dims = { 9, 8, 7 };
+  volrad::DenseVolume blob = densityGrid({ 9, 8, 7 }, volrad::Vec3(4, 3.5, 3), [](double r2) {
+    return std::max(0.05, 1.0 - r2 / 20.0);
+  });
   blob.indexLower = { 3, -4, 10 };
-  blob.spacing = volrad::Vec3(0.25, 0.25, 0.25);
   blob.origin = volrad::Vec3(0.75, -1.0, 2.5);
-  for (int z = 0; z < 7; ++z) {
-    for (int y = 0; y < 8; ++y) {
-      for (int x = 0; x < 9; ++x) {
-        const double r2 = (x - 4) * (x - 4) + (y - 3.5) * (y - 3.5) + (z - 3) * (z - 3);
-        blob.values.push_back(float(std::max(0.05, 1.0 - r2 / 20.0)));
-      }
-    }
-  }
   const std::string in = kOut + "/blob.vdb", out = kOut + "/blob-lit.vdb";
   volrad::writeVdbGrids(in, { blob });
   const std::string scene = kOut + "/vdb.json";
@@ -264,4 +277,47 @@ TEST(VolradCommand, OpenVdbInAndOut)
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.output.find("its grids: density"), std::string::npos) << bad.output;
   EXPECT_FALSE(exists(out));
+}
+
+// Issue 6: --skip-empty-space solves a sparse volume without its empty
+// space; the .vdb written keeps only the medium's voxels active, with the
+// same G there as the solve of the whole box.
+TEST(VolradCommand, SparseSolveOfAVdbKeepsTheBackgroundInactive)
+{
+  if (!volrad::vdbSupported()) {
+    GTEST_SKIP() << "built without OpenVDB";
+  }
+  // A ball of density in a box: exactly zero (no medium) outside it.
+  volrad::DenseVolume ball = densityGrid(
+    { 10, 9, 8 }, volrad::Vec3(5, 4, 4), [](double r2) { return std::max(0.0, 2.0 - r2 / 6.0); });
+  // Two corners of the box hold medium, so that the grid's active box is
+  // the whole box and both solves cover the same voxels.
+  ball.values.front() = 0.5f;
+  ball.values.back() = 0.5f;
+  const std::string in = kOut + "/ball.vdb", scene = kOut + "/ball.json";
+  volrad::writeVdbGrids(in, { ball });
+  std::ofstream(scene) << R"({"version": 1, "material": {"preset": "cloud"},
+    "boundary": {"zmax": {"type": "open", "radiance": 0.1}},
+    "lights": [{"type": "directional", "direction": [0.3, 0.2, -1]}]})";
+  volrad::DenseVolume G[2];
+  for (const bool sparse : { false, true }) {
+    const std::string out = kOut + (sparse ? "/ball-sparse.vdb" : "/ball-box.vdb");
+    std::remove(out.c_str());
+    const CommandRun r =
+      run(in + " --scene " + scene + " -o " + out + (sparse ? " --skip-empty-space" : ""));
+    ASSERT_EQ(r.code, 0) << r.output;
+    G[sparse] = volrad::readVdbGrid(out, "IncidentRadiation");
+    ASSERT_EQ(G[sparse].dims, ball.dims);
+  }
+  int empty = 0;
+  for (std::size_t v = 0; v < ball.values.size(); ++v) {
+    if (ball.values[v] > 0.f) {
+      EXPECT_NEAR(G[1].values[v], G[0].values[v], 1e-3 * G[0].values[v]) << "voxel " << v;
+    } else {
+      ++empty;
+      EXPECT_EQ(G[1].values[v], 0.f) << "voxel " << v; // background: inactive
+      EXPECT_GT(G[0].values[v], 0.f) << "voxel " << v; // the box solve lights empty space
+    }
+  }
+  EXPECT_GT(empty, 300);
 }
