@@ -206,15 +206,16 @@ int main(int argc, char* argv[])
         std::printf("%-7d %-14s %9s error: %s\n", shrink, grid, sparse ? "sparse" : "box", f.error);
         continue;
       }
-      double diff = 0.0;
-      if (sparse && G[0].size() == G[1].size()) {
+      // Compared only when both solves handed back the same voxels' G.
+      char diffText[32] = "";
+      if (sparse && !G[0].empty() && G[0].size() == G[1].size()) {
+        double diff = 0.0;
         for (std::size_t k = 0; k < G[0].size(); ++k) {
           diff = std::max(diff, std::abs(G[1][k] - G[0][k]) / std::max(1e-300, std::abs(G[0][k])));
         }
-      }
-      char diffText[32] = "";
-      if (sparse) {
         std::snprintf(diffText, sizeof(diffText), "%.2g", diff);
+      } else if (sparse) {
+        std::snprintf(diffText, sizeof(diffText), "n/a");
       }
       std::printf("%-7d %-14s %9s %8.2f %8.2f %9.1f %10.3g %10.2g %12s%s\n",
                   shrink,

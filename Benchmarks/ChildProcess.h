@@ -31,6 +31,11 @@ ChildResult runInChild(F&& f, T& out)
   }
   std::fflush(stdout);
   const pid_t pid = fork();
+  if (pid < 0) {
+    close(pipefd[0]);
+    close(pipefd[1]);
+    return r;
+  }
   if (pid == 0) {
     close(pipefd[0]);
     const T result = f();

@@ -719,6 +719,10 @@ int vtkVolumetricRadiosity::RequestData(vtkInformation*,
     for (const std::string& message : volrad::lightsWallsKeepOut(scene)) {
       vtkWarningMacro(<< message);
     }
+    if (this->SkipEmptySpace && description.solver.method == "dense") {
+      vtkWarningMacro("SkipEmptySpace is for the hierarchical solver: the dense solver computes "
+                      "the fields of every voxel");
+    }
     const volrad::Solution solution =
       volrad::solve(scene, description.solver, this->NumberOfThreads, [this](double f) {
         this->UpdateProgress(f);

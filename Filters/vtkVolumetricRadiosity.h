@@ -125,11 +125,11 @@ public:
   ///@{
   /**
    * A sparse solve (the hierarchical solver; the dense one computes every
-   * voxel): the fields of voxels without
-   * medium (kappa_t = 0, empty space) are not computed and are 0, like the
-   * inactive background of an OpenVDB grid; empty space then costs no links,
-   * views or time, and the medium's fields are those of the full solve.
-   * Off (default): G of empty space too.
+   * voxel, with a warning): the fields of voxels without medium (kappa_t = 0
+   * in a channel, empty space) are not computed and are 0 in that channel,
+   * like the inactive background of an OpenVDB grid; empty space then costs
+   * no links, views or time, and the medium's fields are those of the full
+   * solve. Off (default): G of empty space too.
    */
   vtkSetMacro(SkipEmptySpace, vtkTypeBool);
   vtkGetMacro(SkipEmptySpace, vtkTypeBool);

@@ -73,8 +73,9 @@ options:
                  refuse, before allocating, a solve whose estimate passes MIB
                  mebibytes (default: half the physical memory; dense: 4 GiB)
   --skip-empty-space
-                 a sparse solve: voxels without medium get no fields (0, the
-                 background of a .vdb output) and cost no links or time
+                 a sparse solve (hierarchical solver): voxels without medium
+                 get no fields (0, the background of a .vdb output) and cost
+                 no links or time
   -h, --help     this text
 )";
 

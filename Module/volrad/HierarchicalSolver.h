@@ -50,7 +50,7 @@ struct HierarchicalOptions
   int maxIterations = 1000000;
   Iteration iteration = Iteration::Automatic;
   int nearRadius = 1;
-  /// Empty voxels (kappa_t = 0) only let light through, yet their fields
+  /// Empty voxels (kappa_t = 0, per channel) only let light through, yet their fields
   /// (G of empty space) cost views and links like the medium's. false: a
   /// sparse solve that skips them: their fields are 0 (like the inactive
   /// background of an OpenVDB grid), empty space costs no links, no views

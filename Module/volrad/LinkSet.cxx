@@ -436,6 +436,9 @@ LinkSet refineLinks(const ClusterTree& tree,
             if (pa && pb && tree.face(a) == tree.face(b)) {
               continue; // coplanar: they cannot see each other
             }
+            if (a == b && !pa && !(tree.sigma(a) > 0.0)) {
+              continue; // an empty cluster exchanges nothing within itself
+            }
             if (a == b) { // a cluster with itself: its children with each other
               const int n = tree.children(a, ka);
               for (int i = 0; i < n; ++i) {

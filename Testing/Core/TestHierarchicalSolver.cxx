@@ -333,6 +333,7 @@ TEST(HierarchicalSolver, SparseSolveGivesTheBoxSolveInTheMedium)
               box.stats.links);
   ASSERT_GT(empty, s.grid.voxelCount());
   EXPECT_GT(emptyBoxG, 0.0); // the box solve lights its empty space
-  EXPECT_LE(worst, 1e-3);
+  // The same links and sums: equal to round-off (issue 6 asks for 1e-3).
+  EXPECT_LE(worst, 1e-12);
   EXPECT_LT(double(sparse.stats.links), 0.9 * double(box.stats.links));
 }

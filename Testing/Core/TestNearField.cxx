@@ -113,11 +113,13 @@ TEST(NearField, SharedHomogeneousRowsMatchTheirOwnQuadrature)
       c[0] >= 2 && c[0] <= 3 && c[1] >= 2 && c[1] <= 4 && c[2] >= 2 && c[2] <= 4;
     shared += interior;
     const double target = 4.0 * s.kappaTAt(v, 0) * s.grid.voxelVolume();
+    const Index e = a.elements.full[v]; // rows are per element
+    ASSERT_GE(e, 0);
     for (int o = 0; o < a.stencilSize(); ++o) {
-      const std::size_t k = std::size_t(v) * a.stencilSize() + o;
+      const std::size_t k = std::size_t(e) * a.stencilSize() + o;
       worst = std::max(worst, std::abs(a.stencil[k] - b.stencil[k]) / target);
     }
-    EXPECT_NEAR(a.far[v], b.far[v], 2e-2 * target); // default-quadrature noise in b
+    EXPECT_NEAR(a.far[e], b.far[e], 2e-2 * target); // default-quadrature noise in b
   }
   std::printf("[measured] shared homogeneous near rows vs each voxel's own quadrature: worst "
               "difference %.2g of 4 kappa_t V over %d shared voxels\n",
@@ -125,4 +127,31 @@ TEST(NearField, SharedHomogeneousRowsMatchTheirOwnQuadrature)
               shared);
   EXPECT_GT(shared, 0);
   EXPECT_LT(worst, 3e-2); // the neighbours' own rows are coarser in b
+}
+
+// Issue 6's sparse solve: without the empty voxels' views the near field
+// has no view rows at all, and its element rows (kept per element, so empty
+// voxels cost none) are the same.
+TEST(NearField, WithoutEmptyViewsEmptySpaceCostsNothing)
+{
+  Scene s = cubeScene(6);
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    if (s.grid.ijk(v)[0] < 3) { // the other half is empty
+      s.kappaA[v] = 1.f;
+      s.sigmaI[v] = 4.f;
+    }
+  }
+  const NearField with = computeNearField(s, 0, NearFieldOptions{});
+  NearFieldOptions sparse;
+  sparse.emptyViews = false;
+  const NearField without = computeNearField(s, 0, sparse);
+  EXPECT_GT(with.viewColumn.size(), 0u); // the empty voxels next to the medium see it
+  EXPECT_EQ(without.viewColumn.size(), 0u);
+  EXPECT_EQ(without.stencil.size(),
+            std::size_t(without.elements.fullCount) * without.stencilSize());
+  EXPECT_EQ(without.elements.fullCount, s.grid.voxelCount() / 2);
+  EXPECT_EQ(without.stencil, with.stencil);
+  EXPECT_EQ(without.extraValue, with.extraValue);
+  EXPECT_EQ(without.far, with.far);
+  EXPECT_LT(without.bytes(), with.bytes());
 }

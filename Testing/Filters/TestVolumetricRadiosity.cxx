@@ -529,3 +529,25 @@ TEST(VolumetricRadiosity, MemoryBudgetRefusesBeforeSolvingWithBothFigures)
       << method;
   }
 }
+
+// SkipEmptySpace is the hierarchical solver's: with the dense solver the
+// filter says that it computes every voxel anyway, and does.
+TEST(VolumetricRadiosity, SkipEmptySpaceWithTheDenseSolverIsAWarning)
+{
+  auto image = makeImage<vtkFloatArray>();
+  vtkNew<vtkVolumetricRadiosity> f;
+  f->SetInputData(image);
+  f->SetSceneJSON(kScene);
+  f->SkipEmptySpaceOn();
+  volrad::test::MessageCollector warnings;
+  warnings.observe(f, vtkCommand::WarningEvent);
+  f->Update();
+  EXPECT_NE(warnings.text.find("dense solver computes the fields of every voxel"),
+            std::string::npos)
+    << warnings.text;
+  auto* G =
+    vtkFloatArray::SafeDownCast(f->GetOutput()->GetPointData()->GetArray("IncidentRadiation"));
+  ASSERT_NE(G, nullptr);
+  EXPECT_EQ(runFilter(image, kScene),
+            std::vector<float>(G->GetPointer(0), G->GetPointer(0) + image->GetNumberOfPoints()));
+}
