@@ -3,13 +3,15 @@
 // the hierarchical solver over its whole active box ("box": G of the empty
 // space too) and sparsely ("sparse": HierarchicalOptions::emptySpaceFields
 // off), each in a child process so that its peak resident memory is its own:
-//   BenchSparseSolve [--vdb FILE] [--scene FILE] [--threads N] [SHRINK ...]
+//   BenchSparseSolve [--vdb FILE] [--scene FILE] [--threads N] [--dense] [SHRINK ...]
 // SHRINK (default 8 4): the file's voxels averaged SHRINK^3 (whole blocks,
 // like volrad --shrink). The scene (default Data/smoke.scene.json: cloud
 // material, sun and sky) maps the density grid. Prints time, peak memory,
 // links and energy residual of both, and the largest relative difference
-// of G between them over the voxels holding smoke.
+// of G from the box solve's over the voxels holding smoke. --dense adds the
+// dense solver over the box (all factors; the small grids only).
 #include "ChildProcess.h"
+#include "volrad/DenseSolver.h"
 #include "volrad/HierarchicalSolver.h"
 #include "volrad/Material.h"
 #include "volrad/SceneDescription.h"
@@ -71,13 +73,21 @@ struct Figures
   char error[256] = {};
 };
 
+enum class Mode
+{
+  Box,    ///< the hierarchical solver over the whole box
+  Sparse, ///< the same without the fields of empty space
+  Dense   ///< the dense solver (every factor) over the whole box
+};
+const char* const kModeNames[] = { "box", "sparse", "dense" };
+
 /// One solve in this (child) process, the scene made here too (its peak
 /// memory is all the child's); G of the medium's voxels to `gFile`.
 Figures run(const std::string& vdb,
             const std::string& sceneFile,
             int shrink,
             HierarchicalOptions options,
-            bool sparse,
+            Mode mode,
             const std::string& gFile)
 {
   Figures f;
@@ -89,9 +99,13 @@ Figures run(const std::string& vdb,
     for (Index v = 0; v < s.grid.voxelCount(); ++v) {
       f.medium += s.kappaTAt(v, 0) > 0.0 ? 1 : 0;
     }
-    options.emptySpaceFields = !sparse;
+    options.emptySpaceFields = mode != Mode::Sparse;
     HierarchicalReport report;
-    const Solution sol = solveHierarchical(s, options, &report);
+    DenseSolverOptions dense;
+    dense.threads = options.threads;
+    dense.memoryLimitBytes = 16.0 * (1 << 30);
+    const Solution sol =
+      mode == Mode::Dense ? solveDense(s, dense) : solveHierarchical(s, options, &report);
     f.seconds = sol.stats.seconds;
     f.linkSeconds = report.linkSeconds;
     f.links = double(sol.stats.links);
@@ -143,6 +157,7 @@ int main(int argc, char* argv[])
   std::string vdb = VOLRAD_DATA_DIR "/smoke/smoke.vdb", scene = VOLRAD_DATA_DIR "/smoke.scene.json";
   std::vector<int> shrinks;
   HierarchicalOptions options;
+  bool withDense = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--vdb") == 0 && i + 1 < argc) {
       vdb = argv[++i];
@@ -150,11 +165,13 @@ int main(int argc, char* argv[])
       scene = argv[++i];
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       options.threads = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--dense") == 0) {
+      withDense = true;
     } else if (std::atoi(argv[i]) >= 1) {
       shrinks.push_back(std::atoi(argv[i]));
     } else {
       std::fprintf(stderr,
-                   "usage: BenchSparseSolve [--vdb FILE] [--scene FILE] [--threads N] "
+                   "usage: BenchSparseSolve [--vdb FILE] [--scene FILE] [--threads N] [--dense] "
                    "[SHRINK ...]\n");
       return 2;
     }
@@ -163,7 +180,7 @@ int main(int argc, char* argv[])
     shrinks = { 8, 4 };
   }
   std::printf("%s, scene %s\n", vdb.c_str(), scene.c_str());
-  std::printf("%-7s %-14s %9s %8s %8s %9s %10s %10s %12s\n",
+  std::printf("%-7s %-14s %9s %8s %8s %9s %10s %10s %20s\n",
               "shrink",
               "grid (smoke)",
               "solve",
@@ -172,20 +189,24 @@ int main(int argc, char* argv[])
               "peak MiB",
               "links",
               "residual",
-              "G max diff");
+              "G vs box: max / rms");
   for (const int shrink : shrinks) {
-    std::vector<double> G[2];
-    for (const bool sparse : { false, true }) {
+    std::vector<double> G[3];
+    std::vector<Mode> modes = { Mode::Box, Mode::Sparse };
+    if (withDense) {
+      modes.push_back(Mode::Dense);
+    }
+    for (const Mode mode : modes) {
+      const int m = int(mode);
       const std::string gFile =
-        "/tmp/BenchSparseSolve-" + std::to_string(getpid()) + (sparse ? "-sparse" : "-box");
+        "/tmp/BenchSparseSolve-" + std::to_string(getpid()) + "-" + kModeNames[m];
       Figures f;
       const bench::ChildResult child =
-        bench::runInChild([&] { return run(vdb, scene, shrink, options, sparse, gFile); }, f);
-      const bool got = child.finished;
-      G[sparse] = readAll(gFile);
+        bench::runInChild([&] { return run(vdb, scene, shrink, options, mode, gFile); }, f);
+      G[m] = readAll(gFile);
       std::remove(gFile.c_str());
       char grid[64] = "";
-      if (got) {
+      if (child.finished) {
         std::snprintf(grid,
                       sizeof(grid),
                       "%dx%dx%d (%.0f%%)",
@@ -193,34 +214,33 @@ int main(int argc, char* argv[])
                       f.dims[1],
                       f.dims[2],
                       100.0 * double(f.medium) / (double(f.dims[0]) * f.dims[1] * f.dims[2]));
-      }
-      if (!got) {
-        std::printf("%-7d %-14s %9s crashed (status %d)\n",
-                    shrink,
-                    grid,
-                    sparse ? "sparse" : "box",
-                    child.status);
+      } else {
+        std::printf(
+          "%-7d %-14s %9s crashed (status %d)\n", shrink, grid, kModeNames[m], child.status);
         continue;
       }
       if (f.error[0]) {
-        std::printf("%-7d %-14s %9s error: %s\n", shrink, grid, sparse ? "sparse" : "box", f.error);
+        std::printf("%-7d %-14s %9s error: %s\n", shrink, grid, kModeNames[m], f.error);
         continue;
       }
-      // Compared only when both solves handed back the same voxels' G.
+      // Against the box solve, when both handed back the same voxels' G.
       char diffText[32] = "";
-      if (sparse && !G[0].empty() && G[0].size() == G[1].size()) {
-        double diff = 0.0;
+      if (mode != Mode::Box && !G[0].empty() && G[0].size() == G[m].size()) {
+        double diff = 0.0, sum = 0.0;
         for (std::size_t k = 0; k < G[0].size(); ++k) {
-          diff = std::max(diff, std::abs(G[1][k] - G[0][k]) / std::max(1e-300, std::abs(G[0][k])));
+          const double d = std::abs(G[m][k] - G[0][k]) / std::max(1e-300, std::abs(G[0][k]));
+          diff = std::max(diff, d);
+          sum += d * d;
         }
-        std::snprintf(diffText, sizeof(diffText), "%.2g", diff);
-      } else if (sparse) {
+        std::snprintf(
+          diffText, sizeof(diffText), "%.2g / %.2g", diff, std::sqrt(sum / double(G[0].size())));
+      } else if (mode != Mode::Box) {
         std::snprintf(diffText, sizeof(diffText), "n/a");
       }
-      std::printf("%-7d %-14s %9s %8.2f %8.2f %9.1f %10.3g %10.2g %12s%s\n",
+      std::printf("%-7d %-14s %9s %8.2f %8.2f %9.1f %10.3g %10.2g %20s%s\n",
                   shrink,
                   grid,
-                  sparse ? "sparse" : "box",
+                  kModeNames[m],
                   f.seconds,
                   f.linkSeconds,
                   child.peakMiB,
