@@ -476,19 +476,19 @@ LinkSet refineLinks(const ClusterTree& tree,
                 const double ra = tree.radius(a), rb = tree.radius(b);
                 const double geometric = (ra * ra + rb * rb) / (r * r);
                 const int level = std::max(tree.level(a), tree.level(b));
-                const VoxelPyramid::Depth d = tree.pyramid().opticalDepth(ca, cb, level);
+                // The size of the exchange the link may get wrong is attenuated
+                // only by the medium between the two boxes (between t0 and t1
+                // on the centroid line), since the line's depth inside a
+                // cluster can hide its lit surface entirely.
+                const double t0 = exitDistance(tree, a, ca, w),
+                             t1 = r - exitDistance(tree, b, cb, -w);
+                double between = 0.0;
+                const VoxelPyramid::Depth d =
+                  tree.pyramid().opticalDepth(ca, cb, level, t0, t1, between);
                 const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
                 const double err = std::min(1.0, geometric) +
                                    std::min(1.0, 0.5 * (d.upper - d.lower)) +
                                    std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
-                // The size of the exchange the link may get wrong: attenuated only
-                // by the medium between the two boxes, since the centroid line's
-                // depth inside a cluster can hide its lit surface entirely.
-                const double t0 = exitDistance(tree, a, ca, w),
-                             t1 = r - exitDistance(tree, b, cb, -w);
-                const double between =
-                  t1 > t0 ? tree.pyramid().opticalDepth(ca + t0 * w, ca + t1 * w, level).lower
-                          : 0.0;
                 const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
                 const double S = directedSigma(tree, a, w, opt.viewSigma) *
                                  directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /

@@ -61,17 +61,34 @@ VoxelPyramid::VoxelPyramid(const Scene& scene, int channel)
 
 VoxelPyramid::Depth VoxelPyramid::opticalDepth(const Vec3& a, const Vec3& b, int level) const
 {
+  double unused = 0.0;
+  return opticalDepth(a, b, level, 0.0, 0.0, unused);
+}
+
+VoxelPyramid::Depth VoxelPyramid::opticalDepth(const Vec3& a,
+                                               const Vec3& b,
+                                               int level,
+                                               double s0,
+                                               double s1,
+                                               double& lowerWithin) const
+{
   Depth out;
+  lowerWithin = 0.0;
   const Vec3 ab = b - a;
   const double length = ab.norm();
   if (length <= 0.0) {
     return out;
   }
-  traverseVoxels(grids_[level], a, ab / length, length, [&](Index c, double l, double) {
+  traverseVoxels(grids_[level], a, ab / length, length, [&](Index c, double l, double t) {
+    const double lo = min_[level][c];
     out.estimate += mean_[level][c] * l;
-    out.lower += min_[level][c] * l;
+    out.lower += lo * l;
     out.upper += max_[level][c] * l;
     ++out.cellsVisited;
+    const double overlap = std::min(t + l, s1) - std::max(t, s0);
+    if (overlap > 0.0) {
+      lowerWithin += lo * overlap;
+    }
     return true;
   });
   return out;

@@ -39,6 +39,14 @@ public:
 
   /// Marches the cells of one level (level 0: exact, lower = upper).
   Depth opticalDepth(const Vec3& a, const Vec3& b, int level) const;
+  /// The same, and in `lowerWithin` the lower bound of the part of the
+  /// segment between distances s0 and s1 from a (one march for both).
+  Depth opticalDepth(const Vec3& a,
+                     const Vec3& b,
+                     int level,
+                     double s0,
+                     double s1,
+                     double& lowerWithin) const;
 
   /// Marches from the root down, refining only cells whose bounds are
   /// wider than their share of `tolerance` and skipping empty cells whole:

@@ -116,3 +116,34 @@ TEST(VoxelPyramid, EmptyAndSmoothRegionsAreMarchedCoarsely)
               adaptive / 100.0);
   EXPECT_LT(adaptive, fine);
 }
+
+// The link oracle marches a line once for its bounds and for the lower
+// bound of the part between two clusters: that part equals the lower bound
+// of the sub-segment marched on its own.
+TEST(VoxelPyramid, LowerBoundWithinAWindowEqualsTheSubSegmentsOwn)
+{
+  const Scene s = pyramidScene();
+  const VoxelPyramid p(s, 0);
+  Rng rng(5);
+  const Vec3 lo = s.grid.lower(), hi = s.grid.upper();
+  auto inside = [&] {
+    return Vec3(lo[0] + rng.uniform() * (hi[0] - lo[0]),
+                lo[1] + rng.uniform() * (hi[1] - lo[1]),
+                lo[2] + rng.uniform() * (hi[2] - lo[2]));
+  };
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 a = inside(), b = inside();
+    const double r = (b - a).norm();
+    const double s0 = rng.uniform() * r, s1 = s0 + rng.uniform() * (r - s0);
+    const Vec3 w = (b - a) / r;
+    for (int level = 0; level < p.levels(); ++level) {
+      double within = -1.0;
+      const VoxelPyramid::Depth whole = p.opticalDepth(a, b, level, s0, s1, within);
+      const VoxelPyramid::Depth plain = p.opticalDepth(a, b, level);
+      EXPECT_DOUBLE_EQ(whole.lower, plain.lower);
+      EXPECT_DOUBLE_EQ(whole.upper, plain.upper);
+      const double own = p.opticalDepth(a + s0 * w, a + s1 * w, level).lower;
+      EXPECT_NEAR(within, own, 1e-9 * (1.0 + own)) << "line " << k << " level " << level;
+    }
+  }
+}
