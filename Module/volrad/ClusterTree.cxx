@@ -188,6 +188,21 @@ void ClusterTree::buildSideTransmittance(const Scene& scene, int channel)
     }
     across.swap(coarser);
   }
+  // Side sigma / sigma of every cluster, for every link that mixes its sides.
+  sideOpen_.clear();
+  for (int l = 1; l < L; ++l) {
+    for (Index c = 0; c < grids_[l].voxelCount(); ++c) {
+      std::array<float, 6> open;
+      open.fill(1.0f);
+      const double s = sigma_[l][c];
+      if (s > 0.0) {
+        for (int f = 0; f < 6; ++f) {
+          open[f] = float(std::min(1.0, sideSigma_[l][c][f] / s));
+        }
+      }
+      sideOpen_.push_back(open);
+    }
+  }
 }
 
 double ClusterTree::sigmaTowards(Index node, const Vec3& w) const
@@ -196,14 +211,7 @@ double ClusterTree::sigmaTowards(Index node, const Vec3& w) const
   if (isPatch(node) || l == 0) {
     return sigma(node);
   }
-  const auto& sides = sideSigma_[l][cell(node)];
-  const auto open = sideOpenness(node);
-  double weight[3], s = 0.0;
-  sideWeights(w, open.data(), weight);
-  for (int a = 0; a < 3; ++a) {
-    s += weight[a] * sides[side(a, w[a] > 0.0)];
-  }
-  return s;
+  return towards(w, sideOpenness(node).data(), sideSigma_[l][cell(node)]);
 }
 
 double ClusterTree::frontFactor(Index node, const Vec3& w, double kappa) const
@@ -221,9 +229,8 @@ double ClusterTree::frontFactor(Index node, const Vec3& w, double kappa) const
     g[a] = mean(kappa * std::abs(w[a]) * (hi[a] - lo[a]));
   }
   const auto& sides = sideSigma_[l][cell(node)];
-  const auto open = sideOpenness(node);
   double weight[3], all = 0.0, front = 0.0;
-  sideWeights(w, open.data(), weight);
+  sideWeights(w, sideOpenness(node).data(), weight);
   for (int a = 0; a < 3; ++a) {
     const double s = weight[a] * sides[side(a, w[a] > 0.0)];
     all += s;
@@ -253,20 +260,6 @@ void ClusterTree::emissionBox(Index node, const Vec3& w, Vec3& centre, Vec3& hal
     centre[a] = 0.5 * (from + to);
     half[a] = 0.5 * std::max(0.0, to - from);
   }
-}
-
-std::array<float, 6> ClusterTree::sideOpenness(Index node) const
-{
-  const int l = level(node);
-  std::array<float, 6> open;
-  open.fill(1.0f);
-  const double s = sigma(node);
-  if (!isPatch(node) && l > 0 && s > 0.0) {
-    for (int f = 0; f < 6; ++f) {
-      open[f] = float(std::min(1.0, sideSigma_[l][cell(node)][f] / s));
-    }
-  }
-  return open;
 }
 
 int ClusterTree::level(Index node) const
@@ -410,7 +403,8 @@ int ClusterTree::gap(Index a, Index b) const
 
 std::size_t ClusterTree::bytes() const
 {
-  std::size_t b = (voxelSigma_.size() + exitTransmittance_.size()) * sizeof(float);
+  std::size_t b = (voxelSigma_.size() + exitTransmittance_.size()) * sizeof(float) +
+                  sideOpen_.size() * sizeof(std::array<float, 6>);
   for (int l = 0; l < levels(); ++l) {
     b += sigma_[l].size() * sizeof(double) + centroid_[l].size() * sizeof(Vec3) +
          (sideSigma_[l].size() + sideShift_[l].size()) * sizeof(std::array<float, 6>) +

@@ -87,9 +87,27 @@ public:
       weight[a] = std::abs(w[a]) * norm;
     }
   }
+  /// What a cluster shows towards unit w of per-side values (its sides'
+  /// sigma, emission, ...): the three sides facing w, weighted by
+  /// sideWeights.
+  template<class T>
+  static double towards(const Vec3& w, const float* open, const std::array<T, 6>& sides)
+  {
+    double weight[3], s = 0.0;
+    sideWeights(w, open, weight);
+    for (int a = 0; a < 3; ++a) {
+      s += weight[a] * double(sides[side(a, w[a] > 0.0)]);
+    }
+    return s;
+  }
   /// Per cluster node (levels >= 1), side sigma / sigma for each side (1
-  /// for voxels and patches).
-  std::array<float, 6> sideOpenness(Index node) const;
+  /// for voxels and patches); computed once, with the sides.
+  const std::array<float, 6>& sideOpenness(Index node) const
+  {
+    static const std::array<float, 6> kOpen{ 1.f, 1.f, 1.f, 1.f, 1.f, 1.f };
+    const Index nv = grids_[0].voxelCount();
+    return isPatch(node) || node < nv ? kOpen : sideOpen_[node - nv];
+  }
   /// What a cluster's light towards unit w keeps from its sides to the
   /// plane normal to w through its box's foremost corner (where every line
   /// parallel to w has left it): a point of side a crosses w_b u_b + w_c u_c
@@ -133,6 +151,7 @@ private:
   std::vector<std::vector<double>> sigma_;       ///< levels >= 1 (voxels), [0] unused
   std::vector<float> exitTransmittance_;         ///< per voxel node, 6 sides of its parent
   std::vector<std::vector<std::array<float, 6>>> sideSigma_; ///< levels >= 1 (voxels)
+  std::vector<std::array<float, 6>> sideOpen_; ///< per cluster node, from the first cluster on
   /// Per side, where along its axis the light leaving through it comes
   /// from on average, less the centroid (levels >= 1, voxels).
   std::vector<std::vector<std::array<float, 6>>> sideShift_;

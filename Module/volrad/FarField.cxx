@@ -67,11 +67,8 @@ FarField::FarField(const Scene& scene,
       slopeLimit_[k] = float(1.0 / tree.radius(k));
     }
   });
-  const Index nv0 = tree.grid(0).voxelCount();
   const Index clusters = tree.voxelNode(tree.levels() - 1, 0) + 1 - tree.grid(0).voxelCount();
   sideEmit_.assign(clusters, {});
-  sideOpen_.resize(clusters);
-  forEach(clusters, [&](Index k) { sideOpen_[k] = tree.sideOpenness(nv0 + k); });
   sidePhi_.assign(clusters, {});
   moment_.assign(nodes, Vec3::Zero());
   gradient_.assign(nodes, Vec3::Zero());
@@ -238,13 +235,8 @@ void FarField::gather(const double* x,
       // 1/r^2 grows by 2/r per length of its elements' offsets towards b
       // (to first order, limited so that no element's weight is negative).
       if (clusterA) {
-        const auto& f = sideEmit_[a - nv];
-        double weight[3];
-        ClusterTree::sideWeights(w, sideOpen_[a - nv].data(), weight);
-        e = std::min(2.0 / r, double(slopeLimit_[a])) * w.dot(moment_[a]);
-        for (int x = 0; x < 3; ++x) {
-          e += weight[x] * f[ClusterTree::side(x, w[x] > 0.0)];
-        }
+        e = std::min(2.0 / r, double(slopeLimit_[a])) * w.dot(moment_[a]) +
+            ClusterTree::towards(w, tree_.sideOpenness(a).data(), sideEmit_[a - nv]);
       }
       if (patchA) {
         e *= std::max(0.0, faceInwardNormal(tree_.face(a)).dot(w));
@@ -264,7 +256,7 @@ void FarField::gather(const double* x,
       }
       if (clusterB) { // received on b's sides facing a, falling away from a
         double weight[3];
-        ClusterTree::sideWeights(-w, sideOpen_[b - nv].data(), weight);
+        ClusterTree::sideWeights(-w, tree_.sideOpenness(b).data(), weight);
         for (int x = 0; x < 3; ++x) {
           sides[ClusterTree::side(x, w[x] < 0.0)] += weight[x] * c;
         }
@@ -382,8 +374,7 @@ std::size_t FarField::bytes() const
           gradient_.size()) *
            sizeof(Vec3) +
          slopeLimit_.size() * sizeof(float) +
-         (sideEmit_.size() + sidePhi_.size()) * sizeof(std::array<double, 6>) +
-         sideOpen_.size() * sizeof(std::array<float, 6>);
+         (sideEmit_.size() + sidePhi_.size()) * sizeof(std::array<double, 6>);
 }
 
 } // namespace volrad

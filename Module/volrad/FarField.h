@@ -84,8 +84,6 @@ private:
   /// Per cluster node (0 elsewhere): 1 / its radius, the limit of the
   /// first-order variation of a link's exchange across it.
   std::vector<float> slopeLimit_;
-  /// Per voxel cluster: ClusterTree::sideOpenness.
-  std::vector<std::array<float, 6>> sideOpen_;
   // Work arrays, per tree node (mutable: apply is logically const).
   mutable std::vector<double> emit_, phi_, scaled_;
   mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;

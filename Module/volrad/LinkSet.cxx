@@ -436,11 +436,9 @@ LinkSet refineLinks(const ClusterTree& tree,
             if (pa && pb && tree.face(a) == tree.face(b)) {
               continue; // coplanar: they cannot see each other
             }
-            if (a == b && !pa && !(tree.sigma(a) > 0.0)) {
-              continue; // an empty cluster exchanges nothing within itself
-            }
             if (a == b) { // a cluster with itself: its children with each other
-              const int n = tree.children(a, ka);
+              // (an empty one exchanges nothing within itself)
+              const int n = pa || tree.sigma(a) > 0.0 ? tree.children(a, ka) : 0;
               for (int i = 0; i < n; ++i) {
                 for (int j = i; j < n; ++j) {
                   out.push_back({ std::int32_t(ka[i]), std::int32_t(ka[j]) });
