@@ -463,7 +463,10 @@ Solution solveHierarchical(const Scene& scene,
             refinement.radiosity[k] = std::max(refinement.radiosity[k], float(r[k] / power));
           }
         }
+        // The first pass's links go before the second pass refines: both
+        // at once would be the solve's peak.
         far.reset();
+        links = LinkSet();
         links = refineLinks(tree, refinement, gp.sub(0.3 + 0.1 * pass, 0.33 + 0.1 * pass));
         far = std::make_unique<FarField>(
           scene, tree, links, near, gp.sub(0.33 + 0.1 * pass, 0.35 + 0.1 * pass));
