@@ -4,7 +4,7 @@
 // (BenchmarkScenes.h) at 32^3, 64^3, 128^3 and 256^3, or at the sizes and
 // scenes given:
 //   BenchHierarchicalSolver [--scenes a,b,c] [--epsilon E] [--link-tolerance T]
-//                           [--threads N] [--mc] [N ...]
+//                           [--threads N] [--memory-budget GIB] [--mc] [N ...]
 // Each run is a child process, so its peak resident memory is its own; a
 // run that fails (memory refused, solver error) prints its message.
 // With --mc, G of the cube along the x axis through the light is compared
@@ -135,6 +135,8 @@ int main(int argc, char* argv[])
       options.linkTolerance = std::atof(argv[++i]);
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       options.threads = std::atoi(argv[++i]);
+    } else if (std::strcmp(argv[i], "--memory-budget") == 0 && i + 1 < argc) {
+      options.memoryLimitBytes = std::atof(argv[++i]) * double(1 << 30);
     } else if (std::strcmp(argv[i], "--mc") == 0) {
       mc = true;
     } else {

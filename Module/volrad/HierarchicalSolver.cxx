@@ -36,8 +36,14 @@ using Vector = Eigen::VectorXd;
 /// the largest.
 constexpr double kRadiosityFloor = 1e-2;
 
-/// How much coarser the first pass's links are than the final ones.
-constexpr double kFirstPassCoarsening = 10.0;
+/// How much coarser the first pass's links are than the final ones. The
+/// first pass only estimates where the light goes, and its power scale is
+/// the emission and direct light's, before the many bounces of a
+/// high-albedo medium multiply it: at 10x coarser, the 61-mfp cube at 64^3
+/// had more links in the first pass (41 M) than in the second (26 M). At
+/// 100x: the same G on the test scenes, 15-30% less time, the cube's
+/// peak memory 29% lower.
+constexpr double kFirstPassCoarsening = 100.0;
 
 /// Deterministic parallel reductions: the same split whatever the threads.
 template<class F>
