@@ -12,9 +12,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -31,7 +33,7 @@ struct Pair
 
 struct Accepted
 {
-  std::int32_t a, b;
+  std::int32_t a, b; ///< a < b
   float gamma;
 };
 
@@ -314,18 +316,62 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
   return sum / (double(na) * nb * centre);
 }
 
-/// Per-thread lists of candidates and links: deques, since a vector's
-/// doubling copies hundreds of MB at once (seconds in one block, which
-/// no stop request would interrupt).
+/// A list of up to hundreds of millions of items, in chunks of 256 KiB:
+/// unlike a vector it never copies itself to grow (seconds in one block,
+/// which no stop request would interrupt), and as it is drained from the
+/// front each chunk is freed whole, so its pages can go back to the system
+/// (a deque's 512-byte blocks, interleaved with other lists', seldom free
+/// a whole page).
 template<class T>
-using ThreadLists = tbb::combinable<std::deque<T>>;
+class ChunkedList
+{
+public:
+  std::size_t size() const { return size_; }
+  const T& operator[](std::size_t i) const
+  {
+    const std::size_t k = head_ + i;
+    return chunks_[k / kChunk][k % kChunk];
+  }
+  void push_back(const T& x)
+  {
+    const std::size_t k = head_ + size_;
+    if (k == chunks_.size() * kChunk) {
+      chunks_.emplace_back(new T[kChunk]); // default-initialised: untouched pages
+    }
+    chunks_[k / kChunk][k % kChunk] = x;
+    ++size_;
+  }
+  void pop_front()
+  {
+    --size_;
+    if (++head_ == kChunk) {
+      chunks_.pop_front();
+      head_ = 0;
+    }
+  }
+
+private:
+  static constexpr std::size_t kChunk = (std::size_t(1) << 18) / sizeof(T);
+  std::deque<std::unique_ptr<T[]>> chunks_;
+  std::size_t head_ = 0, size_ = 0;
+};
+
+/// Per-thread lists of candidates and links.
+template<class T>
+using ThreadLists = tbb::combinable<ChunkedList<T>>;
+
+/// Accepted links are kept by the slice of nodes their lower end is in, so
+/// that the rows can be written one slice of nodes at a time (refineLinks).
+constexpr int kRowSlices = 16;
+template<class T>
+using Sliced = std::array<ChunkedList<T>, kRowSlices>;
 
 /// The lists of a combinable, one per thread that used it.
 template<class T>
-std::vector<std::deque<T>*> partsOf(ThreadLists<T>& c)
+std::vector<ChunkedList<T>*> partsOf(ThreadLists<T>& c)
 {
-  std::vector<std::deque<T>*> parts;
-  c.combine_each([&](std::deque<T>& l) { parts.push_back(&l); });
+  std::vector<ChunkedList<T>*> parts;
+  c.combine_each([&](ChunkedList<T>& l) { parts.push_back(&l); });
   return parts;
 }
 
@@ -334,7 +380,7 @@ std::vector<std::deque<T>*> partsOf(ThreadLists<T>& c)
 /// Draining removes each item after f: the memory goes back block by block,
 /// not in one long free at the end.
 template<bool Drain, class T, class F>
-void forEachInParts(const std::vector<std::deque<T>*>& parts, const ProgressRange& range, F&& f)
+void forEachInParts(const std::vector<ChunkedList<T>*>& parts, const ProgressRange& range, F&& f)
 {
   std::int64_t total = 0;
   for (const auto* l : parts) {
@@ -426,7 +472,9 @@ LinkSet refineLinks(const ClusterTree& tree,
   }
   const double budget = opt.tolerance * opt.powerScale;
   const SpreadCorrection spread(tree.grid(0).spacing);
-  ThreadLists<Accepted> accepted;
+  tbb::combinable<Sliced<Accepted>> accepted;
+  const Index sliceSize = (tree.size() + kRowSlices - 1) / kRowSlices;
+  auto sliceOf = [sliceSize](Index n) { return int(n / sliceSize); };
   int round = 0;
   // Candidates are examined in blocks, with a progress report (and so a
   // chance to abort) after each; rounds past the ninth share the last tenth.
@@ -511,7 +559,8 @@ LinkSet refineLinks(const ClusterTree& tree,
             }
             if (link) {
               if (gamma > 0.0) {
-                keep.push_back({ std::int32_t(a), std::int32_t(b), float(gamma) });
+                const Index lo = std::min(a, b), hi = std::max(a, b);
+                keep[sliceOf(lo)].push_back({ std::int32_t(lo), std::int32_t(hi), float(gamma) });
               }
               continue;
             }
@@ -545,7 +594,11 @@ LinkSet refineLinks(const ClusterTree& tree,
     ++round;
     if (opt.maxLinks > 0) {
       std::size_t count = todo.size();
-      accepted.combine_each([&](const std::deque<Accepted>& l) { count += l.size(); });
+      accepted.combine_each([&](const Sliced<Accepted>& lists) {
+        for (const auto& l : lists) {
+          count += l.size();
+        }
+      });
       if (count > opt.maxLinks) {
         throw Error("the hierarchical solve needs more than " + std::to_string(opt.maxLinks) +
                     " links, over its memory budget: raise solver.epsilon or the budget");
@@ -557,57 +610,61 @@ LinkSet refineLinks(const ClusterTree& tree,
   // a comparison sort of tens of millions of links takes seconds and cannot
   // be interrupted), then each receiver's links ordered by source so that
   // the order does not depend on the threads.
-  const auto parts = partsOf(accepted);
+  std::array<std::vector<ChunkedList<Accepted>*>, kRowSlices> slices;
+  accepted.combine_each([&](Sliced<Accepted>& lists) {
+    for (int j = 0; j < kRowSlices; ++j) {
+      slices[j].push_back(&lists[j]);
+    }
+  });
   LinkSet out;
   out.pairsPerLevel.assign(tree.levels(), 0);
   out.start.assign(tree.size() + 1, 0);
-  forEachInParts<false>(parts, progress.sub(0.9, 0.92), [&](const Accepted& x) {
-    ++out.pairs;
-    ++out.pairsPerLevel[std::min(tree.level(x.a), tree.level(x.b))];
-    ++out.start[x.a + 1];
-    ++out.start[x.b + 1];
-  });
+  for (int j = 0; j < kRowSlices; ++j) {
+    const double p0 = 0.9 + 0.02 * j / kRowSlices;
+    forEachInParts<false>(
+      slices[j], progress.sub(p0, p0 + 0.02 / kRowSlices), [&](const Accepted& x) {
+        ++out.pairs;
+        ++out.pairsPerLevel[std::min(tree.level(x.a), tree.level(x.b))];
+        ++out.start[x.a + 1];
+        ++out.start[x.b + 1];
+      });
+  }
   for (Index n = 0; n < tree.size(); ++n) {
     out.start[n + 1] += out.start[n];
   }
-  // The rows are written in two passes over the accepted links, the first
-  // half of the nodes' rows, then the rest (the arrays' pages are faulted in
-  // where written), while the second pass frees the accepted links and
-  // hands the freed pages back to the system, so that not all of both are
-  // resident at once (phantom 16^3: 23 instead of 27 bytes per link at the
-  // peak).
+  // The rows are written one slice of nodes at a time (the arrays' pages
+  // are faulted in where written), from the links whose lower end is in the
+  // slice, which are freed as they go; the direction into a later slice
+  // waits in that slice's pending list. Freed pages go back to the system,
+  // so that the accepted links and the rows are not all resident at once.
   out.source.resize(out.start.back());
   out.gamma.resize(out.start.back());
-  const Index half =
-    Index(std::upper_bound(out.start.begin(), out.start.end(), out.start.back() / 2) -
-          out.start.begin()) -
-    1;
   std::vector<Index> cursor(out.start.begin(), out.start.end() - 1);
+  std::int64_t written = 0;
   auto write = [&](Index into, Index from, float gamma) {
     const Index k = cursor[into]++;
     out.source[k] = std::int32_t(from);
     out.gamma[k] = gamma;
-  };
-  forEachInParts<false>(parts, progress.sub(0.92, 0.935), [&](const Accepted& x) {
-    if (x.b < half) {
-      write(x.b, x.a, x.gamma);
-    }
-    if (x.a < half) {
-      write(x.a, x.b, x.gamma);
-    }
-  });
-  std::int64_t drained = 0;
-  forEachInParts<true>(parts, progress.sub(0.935, 0.95), [&](const Accepted& x) {
-    if (x.b >= half) {
-      write(x.b, x.a, x.gamma);
-    }
-    if (x.a >= half) {
-      write(x.a, x.b, x.gamma);
-    }
-    if (++drained % (std::int64_t(1) << 18) == 0) {
+    if (++written % (std::int64_t(1) << 19) == 0) {
       releaseFreedMemory();
     }
-  });
+  };
+  Sliced<Accepted> pending; // (receiver, source, gamma)
+  for (int j = 0; j < kRowSlices; ++j) {
+    const double p0 = 0.92 + 0.03 * j / kRowSlices, p1 = 0.92 + 0.03 * (j + 1) / kRowSlices;
+    forEachInParts<true>(slices[j], progress.sub(p0, 0.5 * (p0 + p1)), [&](const Accepted& x) {
+      write(x.a, x.b, x.gamma);
+      const int later = sliceOf(x.b);
+      if (later == j) {
+        write(x.b, x.a, x.gamma);
+      } else {
+        pending[later].push_back({ x.b, x.a, x.gamma });
+      }
+    });
+    forEachInParts<true>(std::vector<ChunkedList<Accepted>*>{ &pending[j] },
+                         progress.sub(0.5 * (p0 + p1), p1),
+                         [&](const Accepted& x) { write(x.a, x.b, x.gamma); });
+  }
   accepted.clear();
   std::vector<Index>().swap(cursor);
   releaseFreedMemory();

@@ -64,9 +64,9 @@ struct LinkRefinement
 };
 
 /// Peak bytes one link costs while links are refined and stored (measured
-/// 23-25 on the benchmark scenes at 16^3-24^3; the margin keeps the budget
+/// 17-20 on the benchmark scenes at 24^3-64^3; the margin keeps the budget
 /// check from letting an out-of-memory crash through).
-constexpr std::size_t kBytesPerLink = 40;
+constexpr std::size_t kBytesPerLink = 32;
 
 /// An allocator whose resize leaves new elements uninitialised, so that a
 /// large array's pages are only faulted in where it is written.
