@@ -18,6 +18,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 namespace volrad {
@@ -33,7 +34,7 @@ struct Pair
 
 struct Accepted
 {
-  std::int32_t a, b; ///< a < b
+  std::int32_t a, b; ///< a < b (in the rows' pending lists: receiver, source)
   float gamma;
 };
 
@@ -325,6 +326,9 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
 template<class T>
 class ChunkedList
 {
+  static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_copyable_v<T>,
+                "chunks are left uninitialised until written");
+
 public:
   std::size_t size() const { return size_; }
   const T& operator[](std::size_t i) const
@@ -336,7 +340,8 @@ public:
   {
     const std::size_t k = head_ + size_;
     if (k == chunks_.size() * kChunk) {
-      chunks_.emplace_back(new T[kChunk]); // default-initialised: untouched pages
+      std::unique_ptr<T[]> chunk(new T[kChunk]); // default-initialised: untouched pages
+      chunks_.push_back(std::move(chunk));
     }
     chunks_[k / kChunk][k % kChunk] = x;
     ++size_;
@@ -344,7 +349,10 @@ public:
   void pop_front()
   {
     --size_;
-    if (++head_ == kChunk) {
+    if (size_ == 0) {
+      chunks_.clear();
+      head_ = 0;
+    } else if (++head_ == kChunk) {
       chunks_.pop_front();
       head_ = 0;
     }
@@ -356,7 +364,7 @@ private:
   std::size_t head_ = 0, size_ = 0;
 };
 
-/// Per-thread lists of candidates and links.
+/// Per-thread lists of candidates.
 template<class T>
 using ThreadLists = tbb::combinable<ChunkedList<T>>;
 
@@ -377,7 +385,7 @@ std::vector<ChunkedList<T>*> partsOf(ThreadLists<T>& c)
 
 /// f(x) for every item of `parts` in turn, in blocks between progress
 /// reports: sequential passes over up to hundreds of millions of items.
-/// Draining removes each item after f: the memory goes back block by block,
+/// Draining removes each item after f: the memory goes back chunk by chunk,
 /// not in one long free at the end.
 template<bool Drain, class T, class F>
 void forEachInParts(const std::vector<ChunkedList<T>*>& parts, const ProgressRange& range, F&& f)
@@ -620,14 +628,13 @@ LinkSet refineLinks(const ClusterTree& tree,
   out.pairsPerLevel.assign(tree.levels(), 0);
   out.start.assign(tree.size() + 1, 0);
   for (int j = 0; j < kRowSlices; ++j) {
-    const double p0 = 0.9 + 0.02 * j / kRowSlices;
-    forEachInParts<false>(
-      slices[j], progress.sub(p0, p0 + 0.02 / kRowSlices), [&](const Accepted& x) {
-        ++out.pairs;
-        ++out.pairsPerLevel[std::min(tree.level(x.a), tree.level(x.b))];
-        ++out.start[x.a + 1];
-        ++out.start[x.b + 1];
-      });
+    const double p0 = 0.9 + 0.02 * j / kRowSlices, p1 = 0.9 + 0.02 * (j + 1) / kRowSlices;
+    forEachInParts<false>(slices[j], progress.sub(p0, p1), [&](const Accepted& x) {
+      ++out.pairs;
+      ++out.pairsPerLevel[std::min(tree.level(x.a), tree.level(x.b))];
+      ++out.start[x.a + 1];
+      ++out.start[x.b + 1];
+    });
   }
   for (Index n = 0; n < tree.size(); ++n) {
     out.start[n + 1] += out.start[n];
@@ -664,6 +671,12 @@ LinkSet refineLinks(const ClusterTree& tree,
     forEachInParts<true>(std::vector<ChunkedList<Accepted>*>{ &pending[j] },
                          progress.sub(0.5 * (p0 + p1), p1),
                          [&](const Accepted& x) { write(x.a, x.b, x.gamma); });
+  }
+  // The rows are uninitialised until written: every one must be full.
+  for (Index n = 0; n < tree.size(); ++n) {
+    if (cursor[n] != out.start[n + 1]) {
+      throw Error("link refinement: node " + std::to_string(n) + "'s row was not filled");
+    }
   }
   accepted.clear();
   std::vector<Index>().swap(cursor);
