@@ -8,8 +8,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <map>
+#include <utility>
 
 namespace volrad {
 
@@ -60,25 +62,45 @@ void toRows(const std::vector<Triplet>& t,
   }
 }
 
-/// Whether v's box lies inside the domain and is one homogeneous medium
-/// without front sides: then its rows depend on kappa_t alone.
-bool homogeneousBox(const Grid& g,
-                    const std::vector<double>& kt,
-                    const ExchangeElements& el,
-                    Index v,
-                    int r)
+/// Rows that are the same, up to a translation, for every voxel (or patch)
+/// with the same medium around it and the same distances to the domain's
+/// sides: its neighbourhood box, clipped to the domain, holds one extinction
+/// and no front sides. Distances count up to r + 1 (then the box, cut
+/// before the boundary, sees no patch). A patch's class is its voxel's and
+/// its face.
+struct RowClass
+{
+  double kappaT = 0.0;
+  std::array<int, 7> place{}; // distances to the six sides, then the face (-1: a voxel row)
+  bool operator<(const RowClass& o) const
+  {
+    return kappaT != o.kappaT ? kappaT < o.kappaT : place < o.place;
+  }
+};
+
+/// v's row class, or false when its neighbourhood is not one medium.
+bool rowClass(const Grid& g,
+              const std::vector<double>& kt,
+              const ExchangeElements& el,
+              Index v,
+              int r,
+              int face,
+              RowClass& out)
 {
   const auto c = g.ijk(v);
-  // Strictly inside: lines cut at the box never reach a boundary patch.
+  std::array<int, 3> lo, hi;
   for (int a = 0; a < 3; ++a) {
-    if (c[a] - r < 1 || c[a] + r >= g.dims[a] - 1) {
-      return false;
-    }
+    lo[a] = std::max(0, c[a] - r);
+    hi[a] = std::min(g.dims[a] - 1, c[a] + r);
+    out.place[2 * a] = std::min(c[a], r + 1);
+    out.place[2 * a + 1] = std::min(g.dims[a] - 1 - c[a], r + 1);
   }
-  for (int dz = -r; dz <= r; ++dz) {
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        const Index u = g.index(c[0] + dx, c[1] + dy, c[2] + dz);
+  out.place[6] = face;
+  out.kappaT = kt[v];
+  for (int k = lo[2]; k <= hi[2]; ++k) {
+    for (int j = lo[1]; j <= hi[1]; ++j) {
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const Index u = g.index(i, j, k);
         if (kt[u] != kt[v] || el.front[u] >= 0) {
           return false;
         }
@@ -86,6 +108,32 @@ bool homogeneousBox(const Grid& g,
     }
   }
   return true;
+}
+
+/// A shared row's entry that is not a full side in the stencil: a patch
+/// (its face; -1 for the full side of the voxel at `offset`, in a patch's
+/// row), by its voxel's offset from the row's voxel.
+struct ClassEntry
+{
+  int face;
+  std::array<int, 3> offset;
+  double value;
+};
+
+/// The element a class entry names for the row of voxel c.
+Index classElement(const Grid& g,
+                   const ExchangeElements& el,
+                   const std::array<int, 3>& c,
+                   const ClassEntry& x)
+{
+  const int i = c[0] + x.offset[0], j = c[1] + x.offset[1], k = c[2] + x.offset[2];
+  if (x.face < 0) {
+    return el.full[g.index(i, j, k)];
+  }
+  const Face f = static_cast<Face>(x.face);
+  const auto ax = faceAxesInPlane(f);
+  const std::array<int, 3> u{ i, j, k };
+  return el.patchElement(g.patchIndex(f, u[ax[0]], u[ax[1]]));
 }
 
 double raysPerSurface(const QuadratureSettings& q, const Grid& g)
@@ -186,41 +234,90 @@ NearField computeNearField(const Scene& scene,
   const int width = out.stencilSize();
   out.stencil.assign(std::size_t(el.fullCount) * width, 0.f);
 
-  // Voxels sharing one homogeneous neighbourhood share one row.
+  // Voxels of one row class share one row, and so do patches (rowClass):
+  // uniform media and their walls cost one quadrature per class.
+  const Index np = el.patchCount;
   std::vector<std::int32_t> shared(opt.reuseHomogeneous ? nv : 0, -1);
-  std::vector<Index> representatives;
+  std::vector<std::int32_t> sharedPatch(opt.reuseHomogeneous ? np : 0, -1);
+  std::vector<Index> representatives, patchRepresentatives;
   if (opt.reuseHomogeneous) {
-    std::map<double, std::int32_t> byKappa;
+    std::map<RowClass, std::int32_t> classes, patchClasses;
+    RowClass k;
     for (Index v = 0; v < nv; ++v) {
-      if (el.full[v] >= 0 && homogeneousBox(g, medium.kappaT, el, v, r)) {
-        auto [it, added] = byKappa.emplace(medium.kappaT[v], std::int32_t(representatives.size()));
-        if (added) {
+      if (el.full[v] >= 0 && rowClass(g, medium.kappaT, el, v, r, -1, k)) {
+        const auto it = classes.emplace(k, std::int32_t(representatives.size())).first;
+        if (it->second == std::int32_t(representatives.size())) {
           representatives.push_back(v);
         }
         shared[v] = it->second;
       }
     }
+    for (Index p = 0; p < np; ++p) {
+      if (rowClass(g, medium.kappaT, el, g.patchVoxel(p), r, int(g.patchLocation(p).face), k)) {
+        const auto it = patchClasses.emplace(k, std::int32_t(patchRepresentatives.size())).first;
+        if (it->second == std::int32_t(patchRepresentatives.size())) {
+          patchRepresentatives.push_back(p);
+        }
+        sharedPatch[p] = it->second;
+      }
+    }
   }
+  // An element's place relative to voxel c: its face (-1: a voxel's full
+  // side) and its voxel's offset; none past the box (a sliver from round-off).
+  using Place = std::pair<int, std::array<int, 3>>;
+  auto placeOf = [&](Index e, const std::array<int, 3>& c, Place& out) {
+    const bool patch = el.isPatch(e);
+    const auto u = g.ijk(patch ? g.patchVoxel(e - el.fullCount) : el.voxelOf[e]);
+    out = { patch ? int(g.patchLocation(e - el.fullCount).face) : -1,
+            { u[0] - c[0], u[1] - c[1], u[2] - c[2] } };
+    return std::max(
+             { std::abs(out.second[0]), std::abs(out.second[1]), std::abs(out.second[2]) }) <= r;
+  };
   std::vector<double> sharedRows(representatives.size() * width, 0.0);
+  std::vector<std::vector<ClassEntry>> sharedPatches(representatives.size()),
+    sharedPatchRows(patchRepresentatives.size());
+  auto toEntries = [](const std::map<Place, double>& m) {
+    std::vector<ClassEntry> out;
+    for (const auto& [place, value] : m) {
+      out.push_back({ place.first, place.second, value });
+    }
+    return out;
+  };
   tbb::parallel_for(Index(0), Index(representatives.size()), [&](Index k) {
     const Index v = representatives[k];
     const auto c = g.ijk(v);
     double* row = sharedRows.data() + k * width;
+    std::map<Place, double> patches;
+    Place at;
     gatherVoxelLinesInto(medium,
                          el,
                          v,
                          opt.homogeneousQuadrature,
                          neighbourhood(g, v, r),
                          [&](Index e, double p, bool) {
-                           if (el.isPatch(e) || el.isFront(e)) {
-                             return; // not in a homogeneous box
+                           if (!placeOf(e, c, at)) {
+                             return;
                            }
-                           const auto u = g.ijk(el.voxelOf[e]);
-                           const int dx = u[0] - c[0], dy = u[1] - c[1], dz = u[2] - c[2];
-                           if (std::max({ std::abs(dx), std::abs(dy), std::abs(dz) }) <= r) {
-                             row[out.offsetIndex(dx, dy, dz)] += p;
+                           if (at.first >= 0) {
+                             patches[at] += p;
+                           } else {
+                             row[out.offsetIndex(at.second[0], at.second[1], at.second[2])] += p;
                            }
                          });
+    sharedPatches[k] = toEntries(patches);
+  });
+  tbb::parallel_for(Index(0), Index(patchRepresentatives.size()), [&](Index k) {
+    const Index p = patchRepresentatives[k];
+    const auto c = g.ijk(g.patchVoxel(p));
+    std::map<Place, double> row;
+    Place at;
+    gatherPatch(
+      medium, el, p, opt.quadrature, neighbourhood(g, g.patchVoxel(p), r), [&](Index e, double w) {
+        if (placeOf(e, c, at)) {
+          row[at] += w;
+        }
+      });
+    sharedPatchRows[k] = toEntries(row);
   });
   progress.report(0.05);
 
@@ -241,6 +338,10 @@ NearField computeNearField(const Scene& scene,
             const double* src = sharedRows.data() + std::size_t(shared[v]) * width;
             for (int o = 0; o < width; ++o) {
               dst[o] = float(src[o]);
+            }
+            const auto c = g.ijk(v);
+            for (const ClassEntry& x : sharedPatches[shared[v]]) {
+              local.push_back({ self, classElement(g, el, c, x), x.value });
             }
             continue;
           }
@@ -291,12 +392,17 @@ NearField computeNearField(const Scene& scene,
   });
 
   // Patch rows, cut at the box around the voxel behind each patch.
-  const Index np = el.patchCount;
   progress.sub(0.8, 0.85).forBlocks(np, 64, 256, [&](Index b0, Index b1) {
     tbb::parallel_for(Index(b0), Index(b1), [&](Index p) {
       auto& local = extras.local();
-      std::map<Index, double> row;
       const auto c = g.ijk(g.patchVoxel(p));
+      if (!sharedPatch.empty() && sharedPatch[p] >= 0) {
+        for (const ClassEntry& x : sharedPatchRows[sharedPatch[p]]) {
+          local.push_back({ el.patchElement(p), classElement(g, el, c, x), x.value });
+        }
+        return;
+      }
+      std::map<Index, double> row;
       gatherPatch(
         medium,
         el,
@@ -415,9 +521,41 @@ NearField computeNearField(const Scene& scene,
   });
   progress.report(0.9);
 
-  // Views of the empty voxels next to elements.
+  // Views of the empty voxels next to elements. Those whose box is all
+  // empty see only walls: one row per row class.
   TripletLists views;
   const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
+  std::vector<std::int32_t> sharedView(opt.reuseHomogeneous && opt.emptyViews ? nv : 0, -1);
+  std::vector<Index> viewRepresentatives;
+  if (!sharedView.empty()) {
+    std::map<RowClass, std::int32_t> classes;
+    RowClass k;
+    for (Index v = 0; v < nv; ++v) {
+      if (el.full[v] < 0 && rowClass(g, medium.kappaT, el, v, r, -1, k)) {
+        const auto it = classes.emplace(k, std::int32_t(viewRepresentatives.size())).first;
+        if (it->second == std::int32_t(viewRepresentatives.size())) {
+          viewRepresentatives.push_back(v);
+        }
+        sharedView[v] = it->second;
+      }
+    }
+  }
+  auto gatherView = [&](Index v, auto&& sink) {
+    gatherVoxelView(medium, el, v, viewDirs, opt.quadrature, false, neighbourhood(g, v, r), sink);
+  };
+  std::vector<std::vector<ClassEntry>> sharedViews(viewRepresentatives.size());
+  tbb::parallel_for(Index(0), Index(viewRepresentatives.size()), [&](Index k) {
+    const Index v = viewRepresentatives[k];
+    const auto c = g.ijk(v);
+    std::map<Place, double> row;
+    Place at;
+    gatherView(v, [&](Index e, double p, bool) {
+      if (placeOf(e, c, at)) {
+        row[at] += p;
+      }
+    });
+    sharedViews[k] = toEntries(row);
+  });
   // In blocks, with a progress report (and a chance to abort) after each:
   // the empty voxels around a head or a cloud are many.
   progress.sub(0.9, 0.99).forBlocks(nv, 256, 1024, [&](Index b0, Index b1) {
@@ -443,15 +581,15 @@ NearField computeNearField(const Scene& scene,
       if (!seesSomething) {
         return;
       }
+      if (!sharedView.empty() && sharedView[v] >= 0) {
+        auto& local = views.local();
+        for (const ClassEntry& x : sharedViews[sharedView[v]]) {
+          local.push_back({ v, classElement(g, el, c, x), x.value });
+        }
+        return;
+      }
       std::map<Index, double> row;
-      gatherVoxelView(medium,
-                      el,
-                      v,
-                      viewDirs,
-                      opt.quadrature,
-                      false,
-                      neighbourhood(g, v, r),
-                      [&](Index e, double p, bool) { row[e] += p; });
+      gatherView(v, [&](Index e, double p, bool) { row[e] += p; });
       auto& local = views.local();
       for (const auto& [e, w] : row) {
         local.push_back({ v, e, w });

@@ -14,11 +14,15 @@
 /// values plus far weight add up to the element's whole row (4 kappa_t V,
 /// 2 kappa_t V or A), so the split conserves energy.
 ///
-/// Voxels whose neighbourhood lies inside the domain and is homogeneous (one
-/// extinction, no front sides) all have the same rows up to quadrature
-/// noise; with `reuseHomogeneous` they share one, integrated with the
-/// finer `homogeneousQuadrature`: CT-like volumes of a few materials and
-/// uniform media then cost one quadrature per material.
+/// Voxels whose neighbourhood (clipped to the domain) is homogeneous (one
+/// extinction, no front sides) and which lie as far from each of the
+/// domain's sides (counted up to radius + 1) have the same rows up to a
+/// translation and quadrature noise; with `reuseHomogeneous` they share
+/// one, integrated with the finer `homogeneousQuadrature`, and so do the
+/// patches on such voxels (their own quadrature) and the views of empty
+/// voxels with no medium near: CT-like volumes of a few materials, uniform
+/// media and the empty space along the walls then cost one quadrature per
+/// material and place (the 61-mfp cube at 64^3: 22 s -> 0.9 s).
 #pragma once
 
 #include "volrad/ExchangeAreas.h"
