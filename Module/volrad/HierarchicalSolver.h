@@ -19,7 +19,8 @@
 /// In high-albedo, optically thick media plain sweeps converge slowly (each
 /// removes only the light that leaks or is absorbed, 1 - albedo of it);
 /// Method::Automatic then switches to BiCGSTAB on the same operator (a
-/// Krylov gathering over the same near field and links) once sweeps stall.
+/// Krylov gathering over the same near field and links) once sweeps are
+/// slow (three in a row shoot less than 40% of the unshot radiosity).
 #pragma once
 
 #include "volrad/Progress.h"
@@ -37,7 +38,7 @@ struct HierarchicalOptions
   {
     Shooting, ///< sweeps of shooting only
     Krylov,   ///< BiCGSTAB from the start
-    Automatic ///< shooting, BiCGSTAB when the sweeps stall
+    Automatic ///< shooting, BiCGSTAB when the sweeps are slow
   };
   /// Stop when every element's unshot radiosity, times the geometric tail
   /// the observed convergence rate still promises (rate / (1 - rate)), is

@@ -79,6 +79,20 @@ VoxelPyramid::Depth VoxelPyramid::opticalDepth(const Vec3& a,
   if (length <= 0.0) {
     return out;
   }
+  if (level == 0 && !(s1 > s0)) {
+    // Voxels: one extinction each, the bounds are the estimate.
+    const std::vector<float>& kappa = mean_[0];
+    double depth = 0.0;
+    long long cells = 0;
+    traverseVoxels(grids_[0], a, ab / length, length, [&](Index c, double l, double) {
+      depth += kappa[c] * l;
+      ++cells;
+      return true;
+    });
+    out.estimate = out.lower = out.upper = depth;
+    out.cellsVisited = cells;
+    return out;
+  }
   traverseVoxels(grids_[level], a, ab / length, length, [&](Index c, double l, double t) {
     const double lo = min_[level][c];
     out.estimate += mean_[level][c] * l;

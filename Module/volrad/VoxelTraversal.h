@@ -56,16 +56,23 @@ template<class Visitor>
 DomainExit traverseVoxels(const Grid& g, const Vec3& o, const Vec3& d, double tMax, Visitor&& visit)
 {
   DomainExit out;
-  double t0 = 0.0, t1 = 0.0;
-  if (!o.allFinite() || !d.allFinite() || d.squaredNorm() == 0.0 ||
-      !clipToDomain(g, o, d, t0, t1)) {
+  if (!o.allFinite() || !d.allFinite() || d.squaredNorm() == 0.0) {
+    return out;
+  }
+  const Vec3 lo = g.lower();
+  // Most walks (the hierarchy's marches between points of the domain)
+  // start and end inside it: no clipping needed.
+  double t0 = 0.0, t1 = tMax;
+  const Vec3 hi = g.upper(), end = o + d * tMax;
+  const bool inside = (o.array() >= lo.array()).all() && (o.array() <= hi.array()).all() &&
+                      (end.array() >= lo.array()).all() && (end.array() <= hi.array()).all();
+  if (!inside && !clipToDomain(g, o, d, t0, t1)) {
     return out;
   }
   double t = std::max(t0, 0.0);
   if (t1 <= t) {
     return out;
   }
-  const Vec3 lo = g.lower();
   // Start voxel: the point a little way along the first piece, so a start on
   // a voxel boundary picks the voxel the ray goes into.
   const Vec3 probe = o + d * (t + std::min(1e-7 * g.spacing.minCoeff(), 0.5 * (t1 - t)));
