@@ -215,8 +215,14 @@ void FarField::gather(const double* x,
     std::array<double, 6> sides{};
     double phi = 0.0, direct = 0.0, front = 0.0, open = 0.0;
     Vec3 psi = Vec3::Zero(), gradient = Vec3::Zero();
+    // Voxel to voxel (most links): no direction, no sides, no slope.
+    const bool plainB = !clusterB && !patchB && !fronts_;
     for (Index k = links_.start[b]; k < links_.start[b + 1]; ++k) {
       const Index a = links_.source[k];
+      if (plainB && a < nv) { // a voxel leaf (voxel nodes come first)
+        phi += emit_[a] * double(links_.gamma[k]);
+        continue;
+      }
       const bool patchA = tree_.isPatch(a);
       const bool frontA = fronts_ && !patchA && frontEmit_[a] != 0.0;
       double e = emit_[a];
@@ -224,10 +230,6 @@ void FarField::gather(const double* x,
         continue;
       }
       const bool clusterA = slopeLimit_[a] > 0.0f;
-      if (!clusterA && !clusterB && !patchA && !patchB && !fronts_) {
-        phi += e * double(links_.gamma[k]); // voxel to voxel: no direction needed
-        continue;
-      }
       const Vec3 ab = cb - centroid_[a];
       const double r = ab.norm();
       const Vec3 w = ab / r; // from a towards b
