@@ -177,7 +177,7 @@ struct IterationState
   }
 };
 
-/// Sweeps of shooting; returns false when they stall (Automatic mode).
+/// Sweeps of shooting; returns false when they are slow (Automatic mode).
 bool shoot(const ChannelOperator& op,
            IterationState& s,
            double epsilon,

@@ -252,6 +252,25 @@ NearField computeNearField(const Scene& scene,
         shared[v] = it->second;
       }
     }
+    // A class of one voxel would only pay for the finer quadrature.
+    std::vector<int> members(representatives.size(), 0);
+    for (Index v = 0; v < nv; ++v) {
+      if (shared[v] >= 0) {
+        ++members[shared[v]];
+      }
+    }
+    std::vector<std::int32_t> renumber(representatives.size(), -1);
+    std::vector<Index> kept;
+    for (std::size_t c = 0; c < representatives.size(); ++c) {
+      if (members[c] > 1) {
+        renumber[c] = std::int32_t(kept.size());
+        kept.push_back(representatives[c]);
+      }
+    }
+    for (Index v = 0; v < nv; ++v) {
+      shared[v] = shared[v] >= 0 ? renumber[shared[v]] : -1;
+    }
+    representatives = std::move(kept);
     for (Index p = 0; p < np; ++p) {
       if (rowClass(g, medium.kappaT, el, g.patchVoxel(p), r, int(g.patchLocation(p).face), k)) {
         const auto it = patchClasses.emplace(k, std::int32_t(patchRepresentatives.size())).first;

@@ -138,14 +138,17 @@ TEST(NearField, SharedHomogeneousRowsMatchTheirOwnQuadrature)
 // light on another patch).
 TEST(NearField, RowsSharedAlongTheWallsMatchTheirOwnQuadrature)
 {
-  Scene s = cubeScene(7);
+  Scene s; // not a cube, so that a translation mixing up the axes shows
+  s.grid.dims = { 7, 6, 5 };
+  s.grid.spacing = Vec3(0.1, 0.12, 0.15);
+  s.grid.origin = 0.5 * s.grid.spacing;
+  s.allocate();
   for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    const bool medium =
-      s.grid.ijk(v)[0] < 4; // the rest empty, two voxels of it without medium near
+    // The rest empty, two layers of it without medium near.
+    const bool medium = s.grid.ijk(v)[0] < 4;
     s.kappaA[v] = medium ? 2.f : 0.f;
     s.sigmaI[v] = medium ? 6.f : 0.f;
   }
-  s.boundary[static_cast<int>(Face::ZMin)].type = BoundaryCondition::Type::Wall;
   NearFieldOptions own;
   own.reuseHomogeneous = false;
   own.quadrature = own.homogeneousQuadrature;
@@ -210,8 +213,10 @@ TEST(NearField, RowsSharedAlongTheWallsMatchTheirOwnQuadrature)
               views);
   EXPECT_GT(compared, 0);
   EXPECT_GT(views, 0);
-  EXPECT_LT(worstElement, 1e-2); // quadrature noise
-  EXPECT_LT(worstView, 1e-2);
+  EXPECT_GT(worstElement, 0.0); // rows were shared (the same rows otherwise)
+  EXPECT_GT(worstView, 0.0);
+  EXPECT_LT(worstElement, 2e-2); // quadrature noise
+  EXPECT_LT(worstView, 2e-2);
 }
 
 // Issue 6's sparse solve: without the empty voxels' views the near field
