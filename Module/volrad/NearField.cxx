@@ -110,6 +110,20 @@ bool rowClass(const Grid& g,
   return true;
 }
 
+/// The class index of a row of class k, its first row (`index`) becoming
+/// the class's representative.
+std::int32_t joinClass(std::map<RowClass, std::int32_t>& classes,
+                       const RowClass& k,
+                       Index index,
+                       std::vector<Index>& representatives)
+{
+  const auto it = classes.emplace(k, std::int32_t(representatives.size())).first;
+  if (it->second == std::int32_t(representatives.size())) {
+    representatives.push_back(index);
+  }
+  return it->second;
+}
+
 /// A shared row's entry that is not a full side in the stencil: a patch
 /// (its face; -1 for the full side of the voxel at `offset`, in a patch's
 /// row), by its voxel's offset from the row's voxel.
@@ -245,11 +259,7 @@ NearField computeNearField(const Scene& scene,
     RowClass k;
     for (Index v = 0; v < nv; ++v) {
       if (el.full[v] >= 0 && rowClass(g, medium.kappaT, el, v, r, -1, k)) {
-        const auto it = classes.emplace(k, std::int32_t(representatives.size())).first;
-        if (it->second == std::int32_t(representatives.size())) {
-          representatives.push_back(v);
-        }
-        shared[v] = it->second;
+        shared[v] = joinClass(classes, k, v, representatives);
       }
     }
     // A class of one voxel would only pay for the finer quadrature.
@@ -273,11 +283,7 @@ NearField computeNearField(const Scene& scene,
     representatives = std::move(kept);
     for (Index p = 0; p < np; ++p) {
       if (rowClass(g, medium.kappaT, el, g.patchVoxel(p), r, int(g.patchLocation(p).face), k)) {
-        const auto it = patchClasses.emplace(k, std::int32_t(patchRepresentatives.size())).first;
-        if (it->second == std::int32_t(patchRepresentatives.size())) {
-          patchRepresentatives.push_back(p);
-        }
-        sharedPatch[p] = it->second;
+        sharedPatch[p] = joinClass(patchClasses, k, p, patchRepresentatives);
       }
     }
   }
@@ -551,11 +557,7 @@ NearField computeNearField(const Scene& scene,
     RowClass k;
     for (Index v = 0; v < nv; ++v) {
       if (el.full[v] < 0 && rowClass(g, medium.kappaT, el, v, r, -1, k)) {
-        const auto it = classes.emplace(k, std::int32_t(viewRepresentatives.size())).first;
-        if (it->second == std::int32_t(viewRepresentatives.size())) {
-          viewRepresentatives.push_back(v);
-        }
-        sharedView[v] = it->second;
+        sharedView[v] = joinClass(classes, k, v, viewRepresentatives);
       }
     }
   }
