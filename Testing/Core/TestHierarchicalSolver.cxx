@@ -3,6 +3,7 @@
 // same zonal model with every factor) on 12^3-16^3 scenes with walls,
 // surface-like voxels, RGB and a point light inside a scattering medium;
 // its error falls with epsilon; white furnace and energy balance.
+#include "DenseReference.h"
 #include "TestScenes.h"
 #include "volrad/DenseSolver.h"
 #include "volrad/Error.h"
@@ -19,50 +20,9 @@ using namespace volrad::test;
 
 namespace {
 
-/// RMS relative difference of G over voxels with G above 1% of the largest.
-double rmsRelative(const std::vector<double>& ref, const std::vector<double>& x)
-{
-  const double big = *std::max_element(ref.begin(), ref.end());
-  double sum = 0.0;
-  int n = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i) {
-    if (ref[i] >= 0.01 * big) {
-      const double r = (x[i] - ref[i]) / ref[i];
-      sum += r * r;
-      ++n;
-    }
-  }
-  return std::sqrt(sum / std::max(n, 1));
-}
-
-Scene wallsScene(int n)
-{
-  Scene s = cubeScene(n);
-  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.05, 1.0, 0.3); });
-  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 1.0, 6.0, 2.1); });
-  fill(s, s.emissionI, 0, [](const Vec3& x) { return x[2] < 0.25 ? 1.0 : 0.0; });
-  addMixedBoundary(s);
-  return s;
-}
-
-Scene pointLightScene(int n)
-{
-  Scene s = cubeScene(n);
-  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.2, 1.0, 1.3); });
-  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 4.0, 12.0, 0.4); });
-  s.pointLights.push_back({ Vec3(0.47, 0.52, 0.5), uniformChannels(1.0) });
-  return s;
-}
-
-/// The reference: the dense solver with a finer quadrature than its
-/// default, whose own noise (about 0.6% rms in G at the default) would
-/// otherwise take a large share of the 1% budget.
 Solution reference(const Scene& s)
 {
-  DenseSolverOptions o;
-  o.quadrature.voxelPointsPerAxis = 10;
-  o.quadrature.voxelDirections = 16;
-  return solveDense(s, o);
+  return solveDense(s, fineDenseOptions());
 }
 
 struct Comparison
@@ -123,23 +83,7 @@ TEST(HierarchicalSolver, MatchesDenseInRgb)
 
 TEST(HierarchicalSolver, MatchesDenseInAGreyMediumUnderColouredLight)
 {
-  // One extinction for all channels, coloured albedo, light, sky and wall:
-  // the channels share the near field, the hierarchy and the links.
-  Scene s = cubeScene(12, 3);
-  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    const Vec3 x = s.grid.voxelCentre(v);
-    const double kt = lumpy(x, 1.0, 6.0, 0.7);
-    for (int c = 0; c < 3; ++c) {
-      const double albedo = 0.9 - 0.2 * c;
-      s.kappaA[v * 3 + c] = float((1.0 - albedo) * kt);
-      s.sigmaI[v * 3 + c] = float(albedo * kt);
-    }
-  }
-  s.directionalLights.push_back({ Vec3(0.3, 0.2, -1.0), { 1.0, 0.7, 0.4 } });
-  s.boundary[static_cast<int>(Face::ZMax)].radiance = { 0.02, 0.04, 0.08 };
-  s.boundary[static_cast<int>(Face::ZMin)].type = BoundaryCondition::Type::Wall;
-  s.boundary[static_cast<int>(Face::ZMin)].reflectance = { 0.6, 0.5, 0.4 };
-  expectClose("grey medium under coloured light (shared links)", s);
+  expectClose("grey medium under coloured light (shared links)", greyColouredScene(12));
 }
 
 TEST(HierarchicalSolver, MatchesDenseWithAPointLightInsideAScatteringMedium)

@@ -98,6 +98,48 @@ inline Scene rgbTestScene(int n)
   return s;
 }
 
+/// Walls (reflecting and emitting), volume emission at the bottom, sky.
+inline Scene wallsScene(int n)
+{
+  Scene s = cubeScene(n);
+  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.05, 1.0, 0.3); });
+  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 1.0, 6.0, 2.1); });
+  fill(s, s.emissionI, 0, [](const Vec3& x) { return x[2] < 0.25 ? 1.0 : 0.0; });
+  addMixedBoundary(s);
+  return s;
+}
+
+/// A point light inside a lumpy scattering medium.
+inline Scene pointLightScene(int n)
+{
+  Scene s = cubeScene(n);
+  fill(s, s.kappaA, 0, [](const Vec3& x) { return lumpy(x, 0.2, 1.0, 1.3); });
+  fill(s, s.sigmaI, 0, [](const Vec3& x) { return lumpy(x, 4.0, 12.0, 0.4); });
+  s.pointLights.push_back({ Vec3(0.47, 0.52, 0.5), uniformChannels(1.0) });
+  return s;
+}
+
+/// One extinction for all channels, coloured albedo, light, sky and wall:
+/// the channels share the near field, the hierarchy and the links.
+inline Scene greyColouredScene(int n)
+{
+  Scene s = cubeScene(n, 3);
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    const Vec3 x = s.grid.voxelCentre(v);
+    const double kt = lumpy(x, 1.0, 6.0, 0.7);
+    for (int c = 0; c < 3; ++c) {
+      const double albedo = 0.9 - 0.2 * c;
+      s.kappaA[v * 3 + c] = float((1.0 - albedo) * kt);
+      s.sigmaI[v * 3 + c] = float(albedo * kt);
+    }
+  }
+  s.directionalLights.push_back({ Vec3(0.3, 0.2, -1.0), { 1.0, 0.7, 0.4 } });
+  s.boundary[static_cast<int>(Face::ZMax)].radiance = { 0.02, 0.04, 0.08 };
+  s.boundary[static_cast<int>(Face::ZMin)].type = BoundaryCondition::Type::Wall;
+  s.boundary[static_cast<int>(Face::ZMin)].reflectance = { 0.6, 0.5, 0.4 };
+  return s;
+}
+
 inline void setAllFaces(Scene& s, const BoundaryCondition& bc)
 {
   for (auto& b : s.boundary) {
