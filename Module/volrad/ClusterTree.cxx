@@ -28,6 +28,13 @@ ClusterTree::ClusterTree(const Scene& scene, int channel, const VoxelPyramid& py
   for (int l = 0; l < L; ++l) {
     patchOffset_[l + 1] = patchOffset_[l] + grids_[l].patchCount();
   }
+  level_.resize(patchOffset_[L]);
+  for (int l = 0; l < L; ++l) {
+    std::fill(
+      level_.begin() + voxelOffset_[l], level_.begin() + voxelOffset_[l + 1], std::uint8_t(l));
+    std::fill(
+      level_.begin() + patchOffset_[l], level_.begin() + patchOffset_[l + 1], std::uint8_t(l));
+  }
 
   const Grid& g = grids_[0];
   voxelSigma_.resize(g.voxelCount());
@@ -262,16 +269,6 @@ void ClusterTree::emissionBox(Index node, const Vec3& w, Vec3& centre, Vec3& hal
   }
 }
 
-int ClusterTree::level(Index node) const
-{
-  const auto& off = isPatch(node) ? patchOffset_ : voxelOffset_;
-  int l = 0;
-  while (node >= off[l + 1]) {
-    ++l;
-  }
-  return l;
-}
-
 std::vector<Index> ClusterTree::roots() const
 {
   const int top = levels() - 1;
@@ -403,7 +400,7 @@ int ClusterTree::gap(Index a, Index b) const
 
 std::size_t ClusterTree::bytes() const
 {
-  std::size_t b = (voxelSigma_.size() + exitTransmittance_.size()) * sizeof(float) +
+  std::size_t b = level_.size() + (voxelSigma_.size() + exitTransmittance_.size()) * sizeof(float) +
                   sideOpen_.size() * sizeof(std::array<float, 6>);
   for (int l = 0; l < levels(); ++l) {
     b += sigma_[l].size() * sizeof(double) + centroid_[l].size() * sizeof(Vec3) +

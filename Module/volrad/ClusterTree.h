@@ -27,6 +27,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 namespace volrad {
@@ -47,7 +48,7 @@ public:
   Index voxelNode(int level, Index cell) const { return voxelOffset_[level] + cell; }
   Index patchNode(int level, Index patch) const { return patchOffset_[level] + patch; }
   bool isPatch(Index node) const { return node >= patchOffset_[0]; }
-  int level(Index node) const;
+  int level(Index node) const { return level_[node]; }
   /// Cell index within its level (the voxel or patch index on level 0).
   Index cell(Index node) const
   {
@@ -147,9 +148,12 @@ private:
   const VoxelPyramid& pyramid_;
   std::vector<Grid> grids_;
   std::vector<Index> voxelOffset_, patchOffset_; ///< per level, plus the total
-  std::vector<float> voxelSigma_;                ///< level 0
-  std::vector<std::vector<double>> sigma_;       ///< levels >= 1 (voxels), [0] unused
-  std::vector<float> exitTransmittance_;         ///< per voxel node, 6 sides of its parent
+  /// Per node (one byte: a node's level is asked several times per link
+  /// candidate, and finding it from the offsets was a loop each time).
+  std::vector<std::uint8_t> level_;
+  std::vector<float> voxelSigma_;          ///< level 0
+  std::vector<std::vector<double>> sigma_; ///< levels >= 1 (voxels), [0] unused
+  std::vector<float> exitTransmittance_;   ///< per voxel node, 6 sides of its parent
   std::vector<std::vector<std::array<float, 6>>> sideSigma_; ///< levels >= 1 (voxels)
   std::vector<std::array<float, 6>> sideOpen_; ///< per cluster node, from the first cluster on
   /// Per side, where along its axis the light leaving through it comes
