@@ -217,17 +217,16 @@ void FarField::gather(const double* x,
     Vec3 psi = Vec3::Zero(), gradient = Vec3::Zero();
     // Voxel to voxel (most links): no direction, no sides, no slope.
     const bool plainB = !clusterB && !patchB && !fronts_;
-    for (Index k = links_.start[b]; k < links_.start[b + 1]; ++k) {
-      const Index a = links_.source[k];
+    links_.forEachInto(b, [&](Index a, float gamma) {
       if (plainB && a < nv) { // a voxel leaf (voxel nodes come first)
-        phi += emit_[a] * double(links_.gamma[k]);
-        continue;
+        phi += emit_[a] * double(gamma);
+        return;
       }
       const bool patchA = tree_.isPatch(a);
       const bool frontA = fronts_ && !patchA && frontEmit_[a] != 0.0;
       double e = emit_[a];
       if (e == 0.0 && !frontA) {
-        continue;
+        return;
       }
       const bool clusterA = slopeLimit_[a] > 0.0f;
       const Vec3 ab = cb - centroid_[a];
@@ -251,10 +250,10 @@ void FarField::gather(const double* x,
             std::clamp(0.5 * d + 0.75 * frontMoment_[a].dot(w), std::min(0.0, d), std::max(0.0, d));
         }
       }
-      const double c = e * double(links_.gamma[k]);
+      const double c = e * double(gamma);
       if (patchB) {
         phi += c * std::max(0.0, -nb.dot(w));
-        continue;
+        return;
       }
       if (clusterB) { // received on b's sides facing a, falling away from a
         double weight[3];
@@ -273,7 +272,7 @@ void FarField::gather(const double* x,
         psi -= c * w; // towards the source
         open += c;
       }
-    }
+    });
     phi_[b] = phi;
     gradient_[b] = gradient;
     if (clusterB) {

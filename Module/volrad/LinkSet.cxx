@@ -639,27 +639,44 @@ LinkSet refineLinks(const ClusterTree& tree,
   for (Index n = 0; n < tree.size(); ++n) {
     out.start[n + 1] += out.start[n];
   }
-  // The rows are written one slice of nodes at a time (the arrays' pages
-  // are faulted in where written), from the links whose lower end is in the
-  // slice, which are freed as they go; the direction into a later slice
-  // waits in that slice's pending list. Freed pages go back to the system,
-  // so that the accepted links and the rows are not all resident at once.
-  out.source.resize(out.start.back());
-  out.gamma.resize(out.start.back());
+  // The rows are written one slice of nodes at a time, from the links whose
+  // lower end is in the slice, which are freed as they go; the direction
+  // into a later slice waits in that slice's pending list. Freed pages go
+  // back to the system, so that the accepted links and the rows are not all
+  // resident at once. A slice's rows are filled in full 32-bit form, each
+  // ordered by source (so that the order does not depend on the threads),
+  // then stored as steps (LinkSet) in the final arrays, whose pages are
+  // faulted in only where written.
+  const Index total = out.start.back();
+  out.step.resize(total);
+  out.gamma.resize(total);
+  out.farStart.assign(tree.size() + 1, 0);
+  std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> rawSource;
+  std::vector<float, UninitialisedAllocator<float>> rawGamma;
   std::vector<Index> cursor(out.start.begin(), out.start.end() - 1);
+  Index sliceBegin = 0; // the current slice's first entry
   std::int64_t written = 0;
   auto write = [&](Index into, Index from, float gamma) {
-    const Index k = cursor[into]++;
-    out.source[k] = std::int32_t(from);
-    out.gamma[k] = gamma;
+    const Index k = cursor[into]++ - sliceBegin;
+    rawSource[k] = std::int32_t(from);
+    rawGamma[k] = gamma;
     if (++written % (std::int64_t(1) << 19) == 0) {
       releaseFreedMemory();
     }
   };
+  tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
   Sliced<Accepted> pending; // (receiver, source, gamma)
   for (int j = 0; j < kRowSlices; ++j) {
-    const double p0 = 0.92 + 0.03 * j / kRowSlices, p1 = 0.92 + 0.03 * (j + 1) / kRowSlices;
-    forEachInParts<true>(slices[j], progress.sub(p0, 0.5 * (p0 + p1)), [&](const Accepted& x) {
+    const Index n0 = std::min(tree.size(), j * sliceSize),
+                n1 = std::min(tree.size(), (j + 1) * sliceSize);
+    sliceBegin = out.start[n0];
+    decltype(rawSource)().swap(rawSource); // a new, untouched block each slice
+    decltype(rawGamma)().swap(rawGamma);
+    rawSource.resize(out.start[n1] - sliceBegin);
+    rawGamma.resize(out.start[n1] - sliceBegin);
+    const double p0 = 0.92 + 0.08 * j / kRowSlices, p1 = 0.92 + 0.08 * (j + 1) / kRowSlices;
+    const double q1 = p0 + 0.4 * (p1 - p0), q2 = p0 + 0.6 * (p1 - p0);
+    forEachInParts<true>(slices[j], progress.sub(p0, q1), [&](const Accepted& x) {
       write(x.a, x.b, x.gamma);
       const int later = sliceOf(x.b);
       if (later == j) {
@@ -669,36 +686,59 @@ LinkSet refineLinks(const ClusterTree& tree,
       }
     });
     forEachInParts<true>(std::vector<ChunkedList<Accepted>*>{ &pending[j] },
-                         progress.sub(0.5 * (p0 + p1), p1),
+                         progress.sub(q1, q2),
                          [&](const Accepted& x) { write(x.a, x.b, x.gamma); });
-  }
-  // The rows are uninitialised until written: every one must be full.
-  for (Index n = 0; n < tree.size(); ++n) {
-    if (cursor[n] != out.start[n + 1]) {
-      throw Error("link refinement: node " + std::to_string(n) + "'s row was not filled");
+    // The rows are uninitialised until written: every one must be full.
+    for (Index n = n0; n < n1; ++n) {
+      if (cursor[n] != out.start[n + 1]) {
+        throw Error("link refinement: node " + std::to_string(n) + "'s row was not filled");
+      }
+    }
+    const ProgressRange sortRange = progress.sub(q2, p1);
+    sortRange.forBlocks(n1 - n0, 256, 4096, [&](std::int64_t b0, std::int64_t b1) {
+      tbb::parallel_for(tbb::blocked_range<Index>(n0 + b0, n0 + b1, 256), [&](const auto& r) {
+        auto& links = scratch.local();
+        for (Index b = r.begin(); b != r.end(); ++b) {
+          const Index k0 = out.start[b] - sliceBegin, k1 = out.start[b + 1] - sliceBegin;
+          links.clear();
+          for (Index k = k0; k < k1; ++k) {
+            links.emplace_back(rawSource[k], rawGamma[k]);
+          }
+          std::sort(links.begin(), links.end());
+          for (Index k = k0; k < k1; ++k) {
+            rawSource[k] = links[k - k0].first;
+            rawGamma[k] = links[k - k0].second;
+          }
+        }
+      });
+    });
+    for (Index b = n0; b < n1; ++b) {
+      if (out.farSource.size() > std::numeric_limits<std::uint32_t>::max()) {
+        throw Error("link refinement: too many far steps for 32-bit row offsets");
+      }
+      out.farStart[b] = std::uint32_t(out.farSource.size());
+      std::int64_t previous = -1;
+      for (Index k = out.start[b]; k < out.start[b + 1]; ++k) {
+        const std::int32_t a = rawSource[k - sliceBegin];
+        const std::int64_t d = std::int64_t(a) - previous;
+        if (d < LinkSet::kFarStep) {
+          out.step[k] = std::uint16_t(d);
+        } else {
+          out.step[k] = LinkSet::kFarStep;
+          out.farSource.push_back(a);
+        }
+        out.gamma[k] = rawGamma[k - sliceBegin];
+        previous = a;
+      }
     }
   }
+  out.farStart[tree.size()] = std::uint32_t(out.farSource.size());
+  out.farSource.shrink_to_fit();
   accepted.clear();
   std::vector<Index>().swap(cursor);
+  decltype(rawSource)().swap(rawSource);
+  decltype(rawGamma)().swap(rawGamma);
   releaseFreedMemory();
-  tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
-  progress.sub(0.95, 1.0).forBlocks(tree.size(), 256, 4096, [&](std::int64_t b0, std::int64_t b1) {
-    tbb::parallel_for(tbb::blocked_range<Index>(b0, b1, 256), [&](const auto& r) {
-      auto& links = scratch.local();
-      for (Index b = r.begin(); b != r.end(); ++b) {
-        const Index k0 = out.start[b], k1 = out.start[b + 1];
-        links.clear();
-        for (Index k = k0; k < k1; ++k) {
-          links.emplace_back(out.source[k], out.gamma[k]);
-        }
-        std::sort(links.begin(), links.end());
-        for (Index k = k0; k < k1; ++k) {
-          out.source[k] = links[k - k0].first;
-          out.gamma[k] = links[k - k0].second;
-        }
-      }
-    });
-  });
   progress.report(1.0);
   return out;
 }

@@ -64,8 +64,9 @@ struct LinkRefinement
 };
 
 /// Peak bytes one link costs while links are refined and stored (measured
-/// 17-20 on the benchmark scenes at 24^3-64^3; the margin keeps the budget
-/// check from letting an out-of-memory crash through).
+/// 17-18 on the benchmark scenes at 32^3-64^3, the whole solve's peak per
+/// link; the margin keeps the budget check from letting an out-of-memory
+/// crash through).
 constexpr std::size_t kBytesPerLink = 32;
 
 /// An allocator whose resize leaves new elements uninitialised, so that a
@@ -95,18 +96,42 @@ struct UninitialisedAllocator : std::allocator<T>
   }
 };
 
+/// Links by receiving node, each row ordered by source. A source is stored
+/// as its step from the row's previous source (the first from -1) in 16 bits,
+/// 6 bytes a link direction with its gamma instead of 8: the rows are most of
+/// the solver's memory, and the far field streams through them at every
+/// iteration. A step of kFarStep or more is stored as kFarStep and its
+/// source in farSource (rare: jumps between levels, z slabs of grids past
+/// 256^2 voxels a slab).
 struct LinkSet
 {
+  static constexpr std::uint16_t kFarStep = 0xffff;
   /// Per receiving node, the links into it: [start[b], start[b + 1]).
   std::vector<Index> start;
-  std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> source;
+  std::vector<std::uint16_t, UninitialisedAllocator<std::uint16_t>> step;
   std::vector<float, UninitialisedAllocator<float>> gamma; ///< tau / (pi r^2), as above
+  std::vector<std::int32_t> farSource;                     ///< the sources of far steps, in order
+  std::vector<std::uint32_t> farStart;                     ///< per node, its first in farSource
   long long pairs = 0;                                     ///< links (each serves both directions)
   std::vector<long long> pairsPerLevel;                    ///< by the finer end's level
 
+  /// f(source, gamma) for the links into node b, in the order of sources.
+  template<class F>
+  void forEachInto(Index b, F&& f) const
+  {
+    std::int64_t a = -1;
+    std::uint32_t far = farStart[b];
+    for (Index k = start[b]; k < start[b + 1]; ++k) {
+      const std::uint16_t s = step[k];
+      a = s == kFarStep ? std::int64_t(farSource[far++]) : a + s;
+      f(Index(a), gamma[k]);
+    }
+  }
+
   std::size_t bytes() const
   {
-    return start.size() * sizeof(Index) + source.size() * (sizeof(std::int32_t) + sizeof(float));
+    return start.size() * sizeof(Index) + step.size() * (sizeof(std::uint16_t) + sizeof(float)) +
+           (farSource.size() + farStart.size()) * sizeof(std::int32_t);
   }
 };
 

@@ -168,14 +168,13 @@ TEST(ClusterExchange, CloseVoxelLinksMatchTheDenseExchangeAreas)
     const Grid& g = s.grid;
     double link[7] = {}, exact[7] = {};
     for (Index b = 0; b < g.voxelCount(); ++b) {
-      for (Index k = links.start[b]; k < links.start[b + 1]; ++k) {
-        const Index a = links.source[k];
+      links.forEachInto(b, [&](Index a, float gamma) {
         const int gap = a < g.voxelCount() ? tree.gap(a, b) : 0;
         if (gap >= 2 && gap <= 6) {
-          link[gap] += tree.sigma(a) * tree.sigma(b) * links.gamma[k];
+          link[gap] += tree.sigma(a) * tree.sigma(b) * gamma;
           exact[gap] += dense.S(dense.elements.full[a], dense.elements.full[b]);
         }
-      }
+      });
     }
     for (int gap = 2; gap <= 6; ++gap) {
       std::printf("[measured] kappa h %.1f, voxels %d apart: links S / dense S - 1 = %+.4f\n",
