@@ -10,11 +10,12 @@
 // Scenes: walls, shell, rgb, grey, point, thin, phantom, cloud, cube.
 // TOLERANCE 0 is the default (3e-4 epsilon). The dense references (minutes
 // in all) are kept in DIR (default ./accuracy-references), named by a hash
-// of the scene. --size solves the scenes at N^3 instead of the tests'
-// sizes; --reference-tolerance compares with the hierarchical solver at
-// that finer link tolerance (and iterated to E) instead of the dense solver
-// (which stops at about 20^3): how far the default is from converged on
-// larger grids, in its links and in its iterations.
+// of the scene: delete it when the dense solver changes. --size solves the
+// scenes at N^3 instead of the tests' sizes; --reference-tolerance compares
+// with the hierarchical solver at that finer link tolerance (and iterated
+// to E) instead of the dense solver (which stops at about 20^3): how far
+// the default is from converged on larger grids, in its links and in its
+// iterations.
 #include "BenchmarkScenes.h"
 #include "DenseReference.h"
 #include "TestScenes.h"
