@@ -125,20 +125,6 @@ std::vector<double> denseReference(const std::string& name, const Scene& s, cons
   return G;
 }
 
-double maxRelative(const std::vector<double>& ref, const std::vector<double>& x)
-{
-  double big = 0.0, worst = 0.0;
-  for (double g : ref) {
-    big = std::max(big, g);
-  }
-  for (std::size_t i = 0; i < ref.size(); ++i) {
-    if (ref[i] >= 0.01 * big) {
-      worst = std::max(worst, std::abs(x[i] / ref[i] - 1.0));
-    }
-  }
-  return worst;
-}
-
 } // namespace
 
 int main(int argc, char* argv[])
@@ -234,7 +220,7 @@ int main(int argc, char* argv[])
                   s.grid.dims[0],
                   t > 0.0 ? t : 3e-4 * o.epsilon,
                   100.0 * test::rmsRelative(ref, h.G),
-                  100.0 * maxRelative(ref, h.G),
+                  100.0 * test::maxRelative(ref, h.G),
                   h.stats.links,
                   h.stats.seconds,
                   report.linkSeconds,
