@@ -61,17 +61,14 @@ FarField::FarField(const Scene& scene,
   const Index nodes = tree.size();
   centroid_.resize(nodes);
   forEach(nodes, [&](Index k) { centroid_[k] = tree.centroid(k); });
-  slopeLimit_.assign(nodes, 0.f);
-  forEach(nodes, [&](Index k) {
-    if (!tree.isPatch(k) && !tree.isLeaf(k)) {
-      slopeLimit_[k] = float(1.0 / tree.radius(k));
-    }
-  });
-  const Index clusters = tree.voxelNode(tree.levels() - 1, 0) + 1 - tree.grid(0).voxelCount();
-  sideEmit_.assign(clusters, {});
-  sidePhi_.assign(clusters, {});
-  moment_.assign(nodes, Vec3::Zero());
-  gradient_.assign(nodes, Vec3::Zero());
+  const Index nv = tree.grid(0).voxelCount();
+  clusters_ = tree.voxelNode(tree.levels() - 1, 0) + 1 - nv;
+  slopeLimit_.resize(clusters_);
+  forEach(clusters_, [&](Index c) { slopeLimit_[c] = float(1.0 / tree.radius(nv + c)); });
+  sideEmit_.assign(clusters_, {});
+  sidePhi_.assign(clusters_, {});
+  moment_.assign(clusters_, Vec3::Zero());
+  gradient_.assign(clusters_, Vec3::Zero());
   emit_.assign(nodes, 0.0);
   phi_.assign(nodes, 0.0);
   if (fronts_) {
@@ -176,7 +173,10 @@ void FarField::gather(const double* x,
       for (int i = 0; i < k; ++i) {
         s += emit_[kids[i]];
         if (!patches) {
-          moment += moment_[kids[i]] + emit_[kids[i]] * (centroid_[kids[i]] - centroid_[node]);
+          moment += emit_[kids[i]] * (centroid_[kids[i]] - centroid_[node]);
+          if (l > 1) {
+            moment += moment_[kids[i] - nv];
+          }
           for (int f = 0; f < 6; ++f) { // seen through the siblings in front
             sides[f] += (l == 1 ? emit_[kids[i]] : sideEmit_[kids[i] - nv][f]) *
                         double(tree_.toParentSide(kids[i], f));
@@ -189,7 +189,7 @@ void FarField::gather(const double* x,
       }
       emit_[node] = s;
       if (!patches) {
-        moment_[node] = moment;
+        moment_[node - nv] = moment;
         sideEmit_[node - nv] = sides;
       }
       if (fronts_ && !patches) {
@@ -210,8 +210,8 @@ void FarField::gather(const double* x,
     } else if (frontB) {
       nb = unitNormal(scene_, b);
     }
-    const double limitB = slopeLimit_[b];
-    const bool clusterB = limitB > 0.0;
+    const bool clusterB = isVoxelCluster(b, nv);
+    const double limitB = clusterB ? double(slopeLimit_[b - nv]) : 0.0;
     std::array<double, 6> sides{};
     double phi = 0.0, direct = 0.0, front = 0.0, open = 0.0;
     Vec3 psi = Vec3::Zero(), gradient = Vec3::Zero();
@@ -228,7 +228,7 @@ void FarField::gather(const double* x,
       if (e == 0.0 && !frontA) {
         return;
       }
-      const bool clusterA = slopeLimit_[a] > 0.0f;
+      const bool clusterA = isVoxelCluster(a, nv);
       const Vec3 ab = cb - centroid_[a];
       const double r = ab.norm();
       const Vec3 w = ab / r; // from a towards b
@@ -236,7 +236,7 @@ void FarField::gather(const double* x,
       // 1/r^2 grows by 2/r per length of its elements' offsets towards b
       // (to first order, limited so that no element's weight is negative).
       if (clusterA) {
-        e = std::min(2.0 / r, double(slopeLimit_[a])) * w.dot(moment_[a]) +
+        e = std::min(2.0 / r, double(slopeLimit_[a - nv])) * w.dot(moment_[a - nv]) +
             ClusterTree::towards(w, tree_.sideOpenness(a).data(), sideEmit_[a - nv]);
       }
       if (patchA) {
@@ -274,8 +274,8 @@ void FarField::gather(const double* x,
       }
     });
     phi_[b] = phi;
-    gradient_[b] = gradient;
     if (clusterB) {
+      gradient_[b - nv] = gradient;
       sidePhi_[b - nv] = sides;
     }
     if (fronts_ && !patchB) {
@@ -325,8 +325,11 @@ void FarField::gather(const double* x,
                 seen += in[f] * t;
               }
             }
-            phi_[kids[i]] += seen + gradient_[node].dot(centroid_[kids[i]] - centroid_[node]);
-            gradient_[kids[i]] += gradient_[node];
+            const Vec3& gradient = gradient_[node - nv];
+            phi_[kids[i]] += seen + gradient.dot(centroid_[kids[i]] - centroid_[node]);
+            if (l > 1) {
+              gradient_[kids[i] - nv] += gradient;
+            }
           }
           if (fronts_ && !patches) {
             psi_[kids[i]] += psi_[node];

@@ -81,8 +81,16 @@ private:
   /// Per node, its centroid (the gather's directions: ClusterTree::centroid
   /// finds a node's level first, at every link).
   std::vector<Vec3> centroid_;
-  /// Per cluster node (0 elsewhere): 1 / its radius, the limit of the
-  /// first-order variation of a link's exchange across it.
+  /// Voxel clusters are the nodes [voxel count, voxel count + clusters_):
+  /// the arrays indexed by cluster (node - voxel count) hold them only,
+  /// since leaves have no extent and patch nodes no slope.
+  Index clusters_ = 0;
+  bool isVoxelCluster(Index node, Index voxels) const
+  {
+    return node >= voxels && node - voxels < clusters_;
+  }
+  /// Per voxel cluster: 1 / its radius, the limit of the first-order
+  /// variation of a link's exchange across it.
   std::vector<float> slopeLimit_;
   // Work arrays, per tree node (mutable: apply is logically const).
   mutable std::vector<double> emit_, phi_, scaled_;
@@ -91,8 +99,8 @@ private:
   /// With front sides: per node, what its clusters received, without the
   /// sides' transmittance (front sides' share; they emit the same way).
   mutable std::vector<double> open_;
-  /// Per node: its elements' emission moment about its centroid (pull) and
-  /// the gradient of what it received (push).
+  /// Per voxel cluster: its elements' emission moment about its centroid
+  /// (pull) and the gradient of what it received (push).
   mutable std::vector<Vec3> moment_, gradient_;
   /// Per voxel cluster (node - voxel count): its emission through, and what
   /// it received on, each of its six sides (ClusterTree::side).

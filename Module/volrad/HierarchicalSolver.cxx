@@ -82,8 +82,7 @@ struct ChannelOperator
 {
   const Scene& scene;
   const NearField& near;
-  const ZonalSystem& sys;
-  Vector denominator;            // 1 - c S_self
+  Vector gain;                   // c / (1 - c S_self): the self term implicit
   const FarField* far = nullptr; // shared by the channels of one geometry
 
   /// `progress` hears within the far field's sweep (and may abort).
@@ -93,7 +92,7 @@ struct ChannelOperator
     near.apply(scene.grid, x.data(), y.data(), true);
     far->apply(x.data(), y.data(), nullptr, progress);
     tbb::parallel_for(Index(0), Index(y.size()), [&](Index e) {
-      y[e] = sys.c[e] > 0.0 ? sys.c[e] * y[e] / denominator[e] : 0.0;
+      y[e] *= gain[e];
     });
     return y;
   }
@@ -230,7 +229,9 @@ void krylov(const ChannelOperator& op,
             const ProgressRange& progress)
 {
   auto A = [&](const Vector& v) -> Vector {
-    return v - op.apply(v, progress.sub(s.reported, s.reported));
+    Vector y = op.apply(v, progress.sub(s.reported, s.reported));
+    y = v - y; // in place: one temporary, not two
+    return y;
   };
   auto dot = [](const Vector& a, const Vector& b) {
     return reduceSum(a.size(), [&](Index i) { return a[i] * b[i]; });
@@ -374,7 +375,7 @@ Solution solveHierarchical(const Scene& scene,
       : ch(c)
       , dl(std::move(d))
       , sys(std::move(s))
-      , op{ scene, near, sys, Vector::Ones(sys.e.size()), nullptr }
+      , op{ scene, near, Vector::Zero(sys.e.size()), nullptr }
     {
     }
     int ch;
@@ -433,16 +434,22 @@ Solution solveHierarchical(const Scene& scene,
         ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
         setup.report(1.0);
         auto c = std::make_unique<Channel>(ch, std::move(dl), std::move(sys), scene, near);
+        c->x0 = c->sys.e;
         for (Index e = 0; e < n; ++e) {
-          if (c->sys.c[e] > 0.0) {
-            c->op.denominator[e] = 1.0 - c->sys.c[e] * near.diagonal(e);
-            if (!(c->op.denominator[e] > 1e-12)) {
+          const double scatter = c->sys.c[e];
+          if (scatter > 0.0) {
+            const double denominator = 1.0 - scatter * near.diagonal(e);
+            if (!(denominator > 1e-12)) {
               throw Error(
                 "the hierarchical solve is singular: an element scatters back all it emits");
             }
+            c->op.gain[e] = scatter / denominator;
+            c->x0[e] = (c->sys.e[e] + scatter * c->sys.D[e]) / denominator;
           }
         }
-        c->x0 = (c->sys.e + c->sys.c.cwiseProduct(c->sys.D)).cwiseQuotient(c->op.denominator);
+        // Only D (the fields' direct light) is needed from here on.
+        c->sys.e.resize(0);
+        c->sys.c.resize(0);
         c->state.x = c->x0;
         c->state.dx = c->x0;
         channels.push_back(std::move(c));
@@ -534,9 +541,13 @@ Solution solveHierarchical(const Scene& scene,
 
         // Fields: collided power C = S x + D, and the views of other voxels.
         Vector collided = c.sys.D;
-        std::vector<double> farView(nv, 0.0);
+        // Far views of the voxels that are not elements (none in a sparse solve).
+        std::vector<double> farView(opt.emptySpaceFields ? nv : 0, 0.0);
         near.apply(g, c.state.x.data(), collided.data(), false);
-        far->apply(c.state.x.data(), collided.data(), farView.data(), gp.sub(0.95, 0.95));
+        far->apply(c.state.x.data(),
+                   collided.data(),
+                   opt.emptySpaceFields ? farView.data() : nullptr,
+                   gp.sub(0.95, 0.95));
         const Vector& x = c.state.x;
         const DirectLighting& dl = c.dl;
         storeChannelFields(
