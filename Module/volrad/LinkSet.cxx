@@ -7,6 +7,10 @@
 #ifdef __GLIBC__
 #include <malloc.h>
 #endif
+#ifdef __linux__
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 #include <tbb/combinable.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -420,7 +424,57 @@ void releaseFreedMemory()
 #endif
 }
 
+/// Gives the whole pages within [begin, end) of a live block back to the
+/// system, which maps zeros there if they are touched again: for a large
+/// array whose front is no longer read (a vector cannot shrink from the
+/// front).
+template<class T>
+void releasePages(T* begin, T* end)
+{
+#ifdef __linux__
+  const std::uintptr_t page = std::uintptr_t(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t b = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
+  const std::uintptr_t e = reinterpret_cast<std::uintptr_t>(end) / page * page;
+  if (e > b) {
+    madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);
+  }
+#else
+  (void)begin;
+  (void)end;
+#endif
+}
+constexpr std::size_t kReleaseBytes = std::size_t(8) << 20;
+
 } // namespace
+
+GammaCode GammaCode::forLargest(double largest)
+{
+  GammaCode c;
+  if (largest > 0.0) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &largest, sizeof bits);
+    c.base = std::int64_t(bits >> 52) - 62; // the largest, rounded up, at exponent 63 at most
+  }
+  return c;
+}
+
+std::uint16_t GammaCode::encode(double gamma) const
+{
+  if (!(gamma > 0.0)) {
+    return 0;
+  }
+  std::uint64_t bits;
+  std::memcpy(&bits, &gamma, sizeof bits);
+  bits += std::uint64_t(1) << 41; // to the nearest 10-bit mantissa (a carry raises the exponent)
+  const std::int64_t e = std::int64_t(bits >> 52) - base;
+  if (e < 1) {
+    return 0; // below 2^-61 of the largest
+  }
+  if (e > 63) {
+    return 0xffff; // past the largest this code was made for
+  }
+  return std::uint16_t((std::uint64_t(e) << 10) | ((bits >> 42) & 0x3ffu));
+}
 
 double linkGamma(const ClusterTree& tree, Index a, Index b, double depthTolerance)
 {
@@ -490,6 +544,7 @@ LinkSet refineLinks(const ClusterTree& tree,
     const ProgressRange roundRange =
       progress.sub(std::min(0.9, 0.1 * round), std::min(0.9, 0.1 * (round + 1)));
     ThreadLists<Pair> next;
+    std::int64_t released = 0; // todo's candidates before this hold no memory
     roundRange.sub(0.0, 0.9).forBlocks(
       std::int64_t(todo.size()), 1024, 4096, [&](std::int64_t c0, std::int64_t c1) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(c0, c1, 256), [&](const auto& range) {
@@ -587,6 +642,13 @@ LinkSet refineLinks(const ClusterTree& tree,
             }
           }
         });
+        // The examined candidates' pages go back to the system as the round
+        // goes: a large round's candidates and the links it accepts were
+        // the refinement's peak together.
+        if (std::size_t(c1 - released) * sizeof(Pair) >= kReleaseBytes) {
+          releasePages(todo.data() + released, todo.data() + c1);
+          released = c1;
+        }
       });
     // The next round's candidates, in one vector.
     const auto parts = partsOf(next);
@@ -627,9 +689,11 @@ LinkSet refineLinks(const ClusterTree& tree,
   LinkSet out;
   out.pairsPerLevel.assign(tree.levels(), 0);
   out.start.assign(tree.size() + 1, 0);
+  float largest = 0.f;
   for (int j = 0; j < kRowSlices; ++j) {
     const double p0 = 0.9 + 0.02 * j / kRowSlices, p1 = 0.9 + 0.02 * (j + 1) / kRowSlices;
     forEachInParts<false>(slices[j], progress.sub(p0, p1), [&](const Accepted& x) {
+      largest = std::max(largest, x.gamma);
       ++out.pairs;
       ++out.pairsPerLevel[std::min(tree.level(x.a), tree.level(x.b))];
       ++out.start[x.a + 1];
@@ -639,6 +703,7 @@ LinkSet refineLinks(const ClusterTree& tree,
   for (Index n = 0; n < tree.size(); ++n) {
     out.start[n + 1] += out.start[n];
   }
+  out.code = GammaCode::forLargest(largest);
   // The rows are written one slice of nodes at a time, from the links whose
   // lower end is in the slice, which are freed as they go; the direction
   // into a later slice waits in that slice's pending list. Freed pages go
@@ -727,7 +792,7 @@ LinkSet refineLinks(const ClusterTree& tree,
           out.step[k] = LinkSet::kFarStep;
           out.farSource.push_back(a);
         }
-        out.gamma[k] = rawGamma[k - sliceBegin];
+        out.gamma[k] = out.code.encode(rawGamma[k - sliceBegin]);
         previous = a;
       }
     }

@@ -39,6 +39,7 @@
 #include "volrad/Progress.h"
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -64,9 +65,9 @@ struct LinkRefinement
 };
 
 /// Peak bytes one link costs while links are refined and stored (measured
-/// 17-18 on the benchmark scenes at 32^3-64^3, the whole solve's peak per
-/// link; the margin keeps the budget check from letting an out-of-memory
-/// crash through).
+/// 17-18 on the benchmark scenes at 32^3-64^3 with 6-byte directions, the
+/// whole solve's peak per link; the margin keeps the budget check from
+/// letting an out-of-memory crash through).
 constexpr std::size_t kBytesPerLink = 32;
 
 /// An allocator whose resize leaves new elements uninitialised, so that a
@@ -96,24 +97,47 @@ struct UninitialisedAllocator : std::allocator<T>
   }
 };
 
+/// gamma in 16 bits: the top 10 bits of its mantissa, rounded to nearest
+/// (at most 2^-11 = 0.05% off, far below the error a link is refined to),
+/// and 6 bits of exponent counted from `base` (a double's biased exponent):
+/// 2^62 from the largest gamma of a set down to the smallest kept; below,
+/// code 0 is 0. Monotone, so codes order as the values do.
+struct GammaCode
+{
+  std::int64_t base = 0;
+
+  /// The base for gammas up to `largest` (> 0).
+  static GammaCode forLargest(double largest);
+  std::uint16_t encode(double gamma) const;
+  double decode(std::uint16_t code) const
+  {
+    const std::uint64_t bits = (std::uint64_t((code >> 10) + base) << 52) |
+                               (std::uint64_t(code & 0x3ffu) << 42);
+    double g;
+    std::memcpy(&g, &bits, sizeof g);
+    return code == 0 ? 0.0 : g;
+  }
+};
+
 /// Links by receiving node, each row ordered by source. A source is stored
-/// as its step from the row's previous source (the first from -1) in 16 bits,
-/// 6 bytes a link direction with its gamma instead of 8: the rows are most of
-/// the solver's memory, and the far field streams through them at every
-/// iteration. A step of kFarStep or more is stored as kFarStep and its
-/// source in farSource (rare: jumps between levels, z slabs of grids past
-/// 256^2 voxels a slab).
+/// as its step from the row's previous source (the first from -1) in 16 bits
+/// and gamma in 16 (GammaCode): 4 bytes a link direction instead of 8, since
+/// the rows are most of the solver's memory, and the far field streams
+/// through them at every iteration. A step of kFarStep or more is stored as
+/// kFarStep and its source in farSource (rare: jumps between levels, z slabs
+/// of grids past 256^2 voxels a slab).
 struct LinkSet
 {
   static constexpr std::uint16_t kFarStep = 0xffff;
   /// Per receiving node, the links into it: [start[b], start[b + 1]).
   std::vector<Index> start;
   std::vector<std::uint16_t, UninitialisedAllocator<std::uint16_t>> step;
-  std::vector<float, UninitialisedAllocator<float>> gamma; ///< tau / (pi r^2), as above
-  std::vector<std::int32_t> farSource;                     ///< the sources of far steps, in order
-  std::vector<std::uint32_t> farStart;                     ///< per node, its first in farSource
-  long long pairs = 0;                                     ///< links (each serves both directions)
-  std::vector<long long> pairsPerLevel;                    ///< by the finer end's level
+  std::vector<std::uint16_t, UninitialisedAllocator<std::uint16_t>> gamma; ///< tau / (pi r^2), as above
+  GammaCode code;                       ///< how gamma is stored
+  std::vector<std::int32_t> farSource;  ///< the sources of far steps, in order
+  std::vector<std::uint32_t> farStart;  ///< per node, its first in farSource
+  long long pairs = 0;                  ///< links (each serves both directions)
+  std::vector<long long> pairsPerLevel; ///< by the finer end's level
 
   /// f(source, gamma) for the links into node b, in the order of sources.
   template<class F>
@@ -124,13 +148,13 @@ struct LinkSet
     for (Index k = start[b]; k < start[b + 1]; ++k) {
       const std::uint16_t s = step[k];
       a = s == kFarStep ? std::int64_t(farSource[far++]) : a + s;
-      f(Index(a), gamma[k]);
+      f(Index(a), code.decode(gamma[k]));
     }
   }
 
   std::size_t bytes() const
   {
-    return start.size() * sizeof(Index) + step.size() * (sizeof(std::uint16_t) + sizeof(float)) +
+    return start.size() * sizeof(Index) + step.size() * 2 * sizeof(std::uint16_t) +
            (farSource.size() + farStart.size()) * sizeof(std::int32_t);
   }
 };

@@ -168,7 +168,7 @@ TEST(ClusterExchange, CloseVoxelLinksMatchTheDenseExchangeAreas)
     const Grid& g = s.grid;
     double link[7] = {}, exact[7] = {};
     for (Index b = 0; b < g.voxelCount(); ++b) {
-      links.forEachInto(b, [&](Index a, float gamma) {
+      links.forEachInto(b, [&](Index a, double gamma) {
         const int gap = a < g.voxelCount() ? tree.gap(a, b) : 0;
         if (gap >= 2 && gap <= 6) {
           link[gap] += tree.sigma(a) * tree.sigma(b) * gamma;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The link rows (LinkSet.h): every link is stored in the rows of both its
 // ends with the same gamma, each row in increasing order of sources, also
-// where a source is farther than a 16-bit step from the one before it.
+// where a source is farther than a 16-bit step from the one before it; and
+// gamma's 16-bit code (GammaCode) within its rounding of the value.
 #include "TestScenes.h"
 #include "volrad/ClusterTree.h"
 #include "volrad/LinkSet.h"
@@ -9,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -37,9 +40,9 @@ TEST(LinkSet, RowsHoldEachLinkBothWaysInOrderAcrossFarSteps)
   EXPECT_EQ(links.start.back(), 2 * links.pairs);
   EXPECT_GT(links.farSource.size(), 0u); // the far steps are exercised
 
-  std::vector<std::vector<std::pair<Index, float>>> rows(tree.size());
+  std::vector<std::vector<std::pair<Index, double>>> rows(tree.size());
   for (Index b = 0; b < tree.size(); ++b) {
-    links.forEachInto(b, [&](Index a, float gamma) { rows[b].emplace_back(a, gamma); });
+    links.forEachInto(b, [&](Index a, double gamma) { rows[b].emplace_back(a, gamma); });
     ASSERT_EQ(Index(rows[b].size()), links.start[b + 1] - links.start[b]);
   }
   long long checked = 0;
@@ -53,7 +56,7 @@ TEST(LinkSet, RowsHoldEachLinkBothWaysInOrderAcrossFarSteps)
       // The same link in a's row, to b, with the same gamma.
       const auto& other = rows[a];
       const auto it = std::lower_bound(
-        other.begin(), other.end(), std::make_pair(b, -1.f), [](const auto& x, const auto& y) {
+        other.begin(), other.end(), std::make_pair(b, -1.0), [](const auto& x, const auto& y) {
           return x.first < y.first;
         });
       ASSERT_TRUE(it != other.end() && it->first == b) << "link " << a << " - " << b;
@@ -62,4 +65,33 @@ TEST(LinkSet, RowsHoldEachLinkBothWaysInOrderAcrossFarSteps)
     }
   }
   EXPECT_EQ(checked, 2 * links.pairs);
+}
+
+TEST(LinkSet, GammaCodeIsWithinItsRoundingAndKeepsTheOrder)
+{
+  // Gammas over 2^60 below the largest: each decoded within 2^-11 of
+  // itself (a 10-bit mantissa rounded to nearest), in the same order.
+  const double largest = 3.7e4;
+  const GammaCode code = GammaCode::forLargest(largest);
+  EXPECT_EQ(code.decode(code.encode(0.0)), 0.0);
+  EXPECT_EQ(code.decode(code.encode(-1.0)), 0.0);
+  double worst = 0.0, previousValue = 0.0;
+  std::uint16_t previousCode = 0;
+  for (double g = largest * std::ldexp(1.0, -60); g <= largest; g *= 1.0 + 1.0 / 997) {
+    const std::uint16_t c = code.encode(g);
+    const double back = code.decode(c);
+    ASSERT_GT(back, 0.0) << g;
+    worst = std::max(worst, std::abs(back - g) / g);
+    ASSERT_GE(c, previousCode) << g;
+    ASSERT_GE(back, previousValue) << g;
+    previousCode = c;
+    previousValue = back;
+  }
+  EXPECT_LE(worst, std::ldexp(1.0, -11));
+  EXPECT_GT(worst, std::ldexp(1.0, -12)); // the code does round: not a float
+  EXPECT_NEAR(code.decode(code.encode(largest)), largest, largest * std::ldexp(1.0, -11));
+  // Far below the largest: 0; a value just below a power of two rounds up into it.
+  EXPECT_EQ(code.decode(code.encode(largest * std::ldexp(1.0, -70))), 0.0);
+  const double justBelow = std::nextafter(std::ldexp(1.0, 10), 0.0);
+  EXPECT_EQ(code.decode(code.encode(justBelow)), std::ldexp(1.0, 10));
 }
