@@ -17,14 +17,15 @@ namespace {
 
 constexpr double kNegligibleTransmittance = 1e-13;
 
-/// Accumulates rays into per-thread buffers, merged in a fixed order.
+/// Accumulates rays into per-thread buffers, merged in a fixed order. The
+/// front part only where some voxel has a normal (else it stays empty).
 struct RayTally
 {
   std::vector<double> track, trackFront, patchPower;
   double entering = 0.0;
-  explicit RayTally(const Grid& g)
+  RayTally(const Grid& g, bool fronts)
     : track(std::size_t(g.voxelCount()), 0.0)
-    , trackFront(std::size_t(g.voxelCount()), 0.0)
+    , trackFront(fronts ? std::size_t(g.voxelCount()) : 0, 0.0)
     , patchPower(std::size_t(g.patchCount()), 0.0)
   {
   }
@@ -32,6 +33,8 @@ struct RayTally
   {
     for (std::size_t i = 0; i < track.size(); ++i) {
       track[i] += o.track[i];
+    }
+    for (std::size_t i = 0; i < trackFront.size(); ++i) {
       trackFront[i] += o.trackFront[i];
     }
     for (std::size_t i = 0; i < patchPower.size(); ++i) {
@@ -93,7 +96,7 @@ void forChunks(const Grid& g,
     const Index n = std::min(count - w0, perWave);
     tbb::parallel_for(Index(0), chunks, [&](Index ci) {
       if (!partial[ci]) {
-        partial[ci] = std::make_unique<RayTally>(g);
+        partial[ci] = std::make_unique<RayTally>(g, !total.trackFront.empty());
       }
       f(w0 + ci * n / chunks, w0 + (ci + 1) * n / chunks, *partial[ci]);
     });
@@ -226,7 +229,7 @@ DirectLighting computeDirectLight(const Scene& scene,
 {
   const Grid& g = scene.grid;
   const std::vector<double> kt = scene.extinction(channel);
-  RayTally tally(g);
+  RayTally tally(g, !scene.normals.empty());
   const std::size_t nd = scene.directionalLights.size(), lights = nd + scene.pointLights.size();
   auto part = [&](std::size_t i) {
     return progress.sub(double(i) / double(lights), double(i + 1) / double(lights));

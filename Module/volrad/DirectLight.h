@@ -22,7 +22,9 @@ namespace volrad {
 struct DirectLighting
 {
   std::vector<double> track;      ///< per voxel [W * length]
-  std::vector<double> trackFront; ///< the part arriving from the voxel's front (n . w < 0)
+  /// The part arriving from the voxel's front (n . w < 0); empty when the
+  /// scene has no normals (only voxels with a normal have a front).
+  std::vector<double> trackFront;
   std::vector<double> patchPower; ///< per boundary patch: power arriving from inside [W]
   double entering = 0.0;          ///< power that entered the domain [W]
 };

@@ -523,7 +523,8 @@ Solution solveHierarchical(const Scene& scene,
         report.iterationSeconds += since(t);
       }
       sol.stats.links +=
-        links.pairs + static_cast<long long>(near.stencil.size() / 2 + near.extraValue.size() / 2);
+        links.pairs + static_cast<long long>(std::size_t(el.fullCount) * near.stencilSize() / 2 +
+                                             near.extraValue.size() / 2);
       if (report.linksPerLevel.size() < links.pairsPerLevel.size()) {
         report.linksPerLevel.resize(links.pairsPerLevel.size(), 0);
       }

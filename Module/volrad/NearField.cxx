@@ -159,10 +159,27 @@ double raysPerSurface(const QuadratureSettings& q, const Grid& g)
 
 } // namespace
 
+float NearField::stencilEntry(const Grid& g, Index e, int o) const
+{
+  const int centre = offsetIndex(0, 0, 0), half = stencilHalf();
+  if (o >= centre) {
+    return stencil[std::size_t(e) * half + (o - centre)];
+  }
+  const int w = 2 * radius + 1;
+  const auto c = g.ijk(elements.voxelOf[e]);
+  const int i = c[0] + o % w - radius, j = c[1] + (o / w) % w - radius,
+            k = c[2] + o / (w * w) - radius;
+  if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
+    return 0.f;
+  }
+  const Index f = elements.full[g.index(i, j, k)];
+  return f < 0 ? 0.f : stencil[std::size_t(f) * half + (stencilSize() - 1 - o - centre)];
+}
+
 double NearField::diagonal(Index e) const
 {
   if (e < elements.fullCount) {
-    return stencil[std::size_t(e) * stencilSize() + offsetIndex(0, 0, 0)];
+    return stencil[std::size_t(e) * stencilHalf()];
   }
   for (Index k = extraStart[e]; k < extraStart[e + 1]; ++k) {
     if (extraColumn[k] == e) {
@@ -175,14 +192,15 @@ double NearField::diagonal(Index e) const
 void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagonal) const
 {
   const ExchangeElements& el = elements;
-  const int r = radius, w = stencilSize(), centre = offsetIndex(0, 0, 0);
+  const int r = radius, w = stencilSize(), centre = offsetIndex(0, 0, 0), half = stencilHalf();
   tbb::parallel_for(tbb::blocked_range<Index>(0, el.size(), 4096), [&](const auto& range) {
     for (Index e = range.begin(); e != range.end(); ++e) {
       double sum = 0.0;
       if (e < el.fullCount) {
         const Index v = el.voxelOf[e];
         const auto c = g.ijk(v);
-        const float* row = stencil.data() + std::size_t(e) * w;
+        // Offsets before the centre: the neighbour's entry for the mirrored one.
+        const float* row = stencil.data() + std::size_t(e) * half - centre;
         for (int dz = -r; dz <= r; ++dz) {
           if (c[2] + dz < 0 || c[2] + dz >= g.dims[2]) {
             continue;
@@ -196,10 +214,15 @@ void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagon
                 continue;
               }
               const int o = offsetIndex(dx, dy, dz);
-              if (row[o] == 0.f || (skipDiagonal && o == centre)) {
+              const Index f = el.full[g.index(c[0] + dx, c[1] + dy, c[2] + dz)];
+              if (f < 0 || (skipDiagonal && o == centre)) {
                 continue;
               }
-              sum += double(row[o]) * x[el.full[g.index(c[0] + dx, c[1] + dy, c[2] + dz)]];
+              const float s =
+                o >= centre ? row[o] : stencil[std::size_t(f) * half + (w - 1 - o - centre)];
+              if (s != 0.f) {
+                sum += double(s) * x[f];
+              }
             }
           }
         }
@@ -544,6 +567,18 @@ NearField computeNearField(const Scene& scene,
     // slightly negative far weight keeps the row exact.
     out.far[e] = exchangeRowTarget(scene, channel, el, e) - nearSum;
   });
+  // Keep the upper half of each (symmetric) row, in place: each row's part
+  // moves to an earlier place, after every entry read before it.
+  {
+    const int half = out.stencilHalf(), centre = out.offsetIndex(0, 0, 0);
+    for (Index e = 0; e < el.fullCount; ++e) {
+      for (int k = 0; k < half; ++k) {
+        out.stencil[std::size_t(e) * half + k] = out.stencil[std::size_t(e) * width + centre + k];
+      }
+    }
+    out.stencil.resize(std::size_t(el.fullCount) * half);
+    out.stencil.shrink_to_fit();
+  }
   progress.report(0.9);
 
   // Views of the empty voxels next to elements. Those whose box is all

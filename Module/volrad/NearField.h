@@ -48,9 +48,11 @@ struct NearField
   int radius = 1;
   ExchangeElements elements;
   /// Full side to full side, per full side e (voxel v = elements.voxelOf[e],
-  /// so empty voxels cost nothing) (2 radius + 1)^3 values of
-  /// S(v, v + offset), offset index (dx + r) + (2r + 1)((dy + r) + (2r + 1)(dz + r));
-  /// zero past the domain and where the other voxel has kappa_t = 0.
+  /// so empty voxels cost nothing) the stencilHalf() values of
+  /// S(v, v + offset) for the offsets from (0, 0, 0) on in offset index
+  /// (dx + r) + (2r + 1)((dy + r) + (2r + 1)(dz + r)); zero past the domain
+  /// and where the other voxel has kappa_t = 0. S is exactly symmetric, so
+  /// the lower offsets are the neighbours' (stencilEntry): half the memory.
   std::vector<float> stencil;
   /// The other near pairs (a front side or a patch at one end or both), as
   /// rows over elements: row e is [extraStart[e], extraStart[e + 1]).
@@ -67,6 +69,11 @@ struct NearField
   std::vector<float> viewValue;
 
   int stencilSize() const { return (2 * radius + 1) * (2 * radius + 1) * (2 * radius + 1); }
+  /// Offsets stored per full side: (0, 0, 0) and those after it.
+  int stencilHalf() const { return stencilSize() - offsetIndex(0, 0, 0); }
+  /// S(v, v + offset) of full side e at offset index o, any offset (0 past
+  /// the domain and towards voxels that are not full sides).
+  float stencilEntry(const Grid& grid, Index e, int o) const;
   int offsetIndex(int dx, int dy, int dz) const
   {
     const int w = 2 * radius + 1;

@@ -119,8 +119,8 @@ TEST(NearField, SharedHomogeneousRowsMatchTheirOwnQuadrature)
     const Index e = a.elements.full[v]; // rows are per element
     ASSERT_GE(e, 0);
     for (int o = 0; o < a.stencilSize(); ++o) {
-      const std::size_t k = std::size_t(e) * a.stencilSize() + o;
-      worst = std::max(worst, std::abs(a.stencil[k] - b.stencil[k]) / target);
+      worst = std::max(
+        worst, std::abs(a.stencilEntry(s.grid, e, o) - b.stencilEntry(s.grid, e, o)) / target);
     }
     EXPECT_NEAR(a.far[e], b.far[e], 2e-2 * target); // default-quadrature noise in b
   }
@@ -238,7 +238,7 @@ TEST(NearField, WithoutEmptyViewsEmptySpaceCostsNothing)
   EXPECT_GT(with.viewColumn.size(), 0u); // the empty voxels next to the medium see it
   EXPECT_EQ(without.viewColumn.size(), 0u);
   EXPECT_EQ(without.stencil.size(),
-            std::size_t(without.elements.fullCount) * without.stencilSize());
+            std::size_t(without.elements.fullCount) * without.stencilHalf());
   EXPECT_EQ(without.elements.fullCount, s.grid.voxelCount() / 2);
   EXPECT_EQ(without.stencil, with.stencil);
   EXPECT_EQ(without.extraValue, with.extraValue);
