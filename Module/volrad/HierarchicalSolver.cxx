@@ -307,14 +307,21 @@ Solution solveHierarchical(const Scene& scene,
     mediumVoxels += medium ? 1 : 0;
   }
   const double linkedVoxels = double(opt.emptySpaceFields ? scene.grid.voxelCount() : mediumVoxels);
-  const double baseBytes = (400.0 + 40.0 * scene.channels) * double(scene.grid.voxelCount()) +
-                           4.0 * std::pow(2 * opt.nearRadius + 1, 3) * double(mediumVoxels);
-  // The fewest links a voxel needs: about 130 at linkTolerance 1e-7 on the
-  // benchmark scenes (61-mfp cube; 1100-1900 in the cloud and the phantom),
-  // and about 2.2x fewer per decade of tolerance. A solve that would surely
-  // pass the budget is refused now, not after its near field.
+  // Measured with few links (link tolerance 0.01): 430-540 bytes a voxel for
+  // one channel at 64^3, 495-566 for RGB (the smoke at 111x222x112),
+  // the caller's scene and solution included.
+  const double halfStencil = (std::pow(2 * opt.nearRadius + 1, 3) + 1) / 2;
+  const double baseBytes = (420.0 + 40.0 * scene.channels) * double(scene.grid.voxelCount()) +
+                           4.0 * halfStencil * double(mediumVoxels);
+  // The fewest links a voxel needs: at the default tolerance (3e-7) the
+  // fewest measured are 37 a voxel (the smoke at 111x222x112, 2.8 M voxels;
+  // the phantom at 128^3 50, the cube 71), falling on finer grids (the
+  // tolerance is a fraction of the whole scene's power), and about 2.2x
+  // fewer per decade of tolerance. The floor is about half the fewest: a
+  // solve that would surely pass the budget is refused now, not after its
+  // near field; the others are stopped in the refinement if they do.
   const double fewestLinks =
-    linkedVoxels * std::max(10.0, 100.0 * std::pow(1e-7 / linkTolerance, 0.35));
+    linkedVoxels * std::max(5.0, 30.0 * std::pow(1e-7 / linkTolerance, 0.35));
   const double linkBytes = fewestLinks * double(kBytesPerLink);
   if (baseBytes + linkBytes > memoryLimit) {
     std::ostringstream msg;

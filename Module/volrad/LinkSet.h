@@ -65,10 +65,10 @@ struct LinkRefinement
 };
 
 /// Peak bytes one link costs while links are refined and stored (measured
-/// 17-18 on the benchmark scenes at 32^3-64^3 with 6-byte directions, the
-/// whole solve's peak per link; the margin keeps the budget check from
-/// letting an out-of-memory crash through).
-constexpr std::size_t kBytesPerLink = 32;
+/// 10-14 on the benchmark scenes at 32^3-64^3, the whole solve's peak less
+/// what it needs without links, per link; the margin keeps the budget check
+/// from letting an out-of-memory crash through).
+constexpr std::size_t kBytesPerLink = 20;
 
 /// An allocator whose resize leaves new elements uninitialised, so that a
 /// large array's pages are only faulted in where it is written.

@@ -185,7 +185,7 @@ TEST(HierarchicalSolver, RefusesOverItsMemoryBudget)
     EXPECT_NE(std::string(e.what()).find("memory budget"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("before any link"), std::string::npos) << e.what();
   }
-  // Enough for the voxels and the fewest links (1728 voxels x 100), not for
+  // Enough for the voxels and the fewest links (1728 voxels x 20), not for
   // those the default tolerance needs here (about 1e6): refused during the
   // refinement.
   o.memoryLimitBytes = 2e6 + 64.0 * 2e5;
