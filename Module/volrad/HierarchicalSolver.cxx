@@ -310,9 +310,9 @@ Solution solveHierarchical(const Scene& scene,
   // Measured with few links (link tolerance 0.01): 430-540 bytes a voxel for
   // one channel at 64^3, 495-566 for RGB (the smoke at 111x222x112),
   // the caller's scene and solution included.
-  const double halfStencil = (std::pow(2 * opt.nearRadius + 1, 3) + 1) / 2;
   const double baseBytes = (420.0 + 40.0 * scene.channels) * double(scene.grid.voxelCount()) +
-                           4.0 * halfStencil * double(mediumVoxels);
+                           sizeof(float) * NearField::stencilHalfFor(opt.nearRadius) *
+                             double(mediumVoxels);
   // The fewest links a voxel needs: at the default tolerance (3e-7) the
   // fewest measured are 37 a voxel (the smoke at 111x222x112, 2.8 M voxels;
   // the phantom at 128^3 50, the cube 71), falling on finer grids (the

@@ -161,9 +161,8 @@ double raysPerSurface(const QuadratureSettings& q, const Grid& g)
 
 float NearField::stencilEntry(const Grid& g, Index e, int o) const
 {
-  const int centre = offsetIndex(0, 0, 0), half = stencilHalf();
-  if (o >= centre) {
-    return stencil[std::size_t(e) * half + (o - centre)];
+  if (o >= offsetIndex(0, 0, 0)) {
+    return entryTowards(e, -1, o);
   }
   const int w = 2 * radius + 1;
   const auto c = g.ijk(elements.voxelOf[e]);
@@ -173,7 +172,7 @@ float NearField::stencilEntry(const Grid& g, Index e, int o) const
     return 0.f;
   }
   const Index f = elements.full[g.index(i, j, k)];
-  return f < 0 ? 0.f : stencil[std::size_t(f) * half + (stencilSize() - 1 - o - centre)];
+  return f < 0 ? 0.f : entryTowards(e, f, o);
 }
 
 double NearField::diagonal(Index e) const
@@ -192,15 +191,13 @@ double NearField::diagonal(Index e) const
 void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagonal) const
 {
   const ExchangeElements& el = elements;
-  const int r = radius, w = stencilSize(), centre = offsetIndex(0, 0, 0), half = stencilHalf();
+  const int r = radius, centre = offsetIndex(0, 0, 0);
   tbb::parallel_for(tbb::blocked_range<Index>(0, el.size(), 4096), [&](const auto& range) {
     for (Index e = range.begin(); e != range.end(); ++e) {
       double sum = 0.0;
       if (e < el.fullCount) {
         const Index v = el.voxelOf[e];
         const auto c = g.ijk(v);
-        // Offsets before the centre: the neighbour's entry for the mirrored one.
-        const float* row = stencil.data() + std::size_t(e) * half - centre;
         for (int dz = -r; dz <= r; ++dz) {
           if (c[2] + dz < 0 || c[2] + dz >= g.dims[2]) {
             continue;
@@ -218,8 +215,7 @@ void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagon
               if (f < 0 || (skipDiagonal && o == centre)) {
                 continue;
               }
-              const float s =
-                o >= centre ? row[o] : stencil[std::size_t(f) * half + (w - 1 - o - centre)];
+              const float s = entryTowards(e, f, o);
               if (s != 0.f) {
                 sum += double(s) * x[f];
               }

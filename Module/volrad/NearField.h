@@ -68,9 +68,19 @@ struct NearField
   std::vector<std::int64_t> viewColumn;
   std::vector<float> viewValue;
 
-  int stencilSize() const { return (2 * radius + 1) * (2 * radius + 1) * (2 * radius + 1); }
+  static int stencilSizeFor(int r) { return (2 * r + 1) * (2 * r + 1) * (2 * r + 1); }
   /// Offsets stored per full side: (0, 0, 0) and those after it.
-  int stencilHalf() const { return stencilSize() - offsetIndex(0, 0, 0); }
+  static int stencilHalfFor(int r) { return (stencilSizeFor(r) + 1) / 2; }
+  int stencilSize() const { return stencilSizeFor(radius); }
+  int stencilHalf() const { return stencilHalfFor(radius); }
+  /// S(e, f) for full sides e and f at offset index o from e: e's own entry
+  /// from the centre on, f's for the mirrored offset before it.
+  float entryTowards(Index e, Index f, int o) const
+  {
+    const int size = stencilSize(), half = stencilHalfFor(radius), centre = size - half;
+    return o >= centre ? stencil[std::size_t(e) * half + (o - centre)]
+                       : stencil[std::size_t(f) * half + (size - 1 - o - centre)];
+  }
   /// S(v, v + offset) of full side e at offset index o, any offset (0 past
   /// the domain and towards voxels that are not full sides).
   float stencilEntry(const Grid& grid, Index e, int o) const;
