@@ -358,11 +358,17 @@ void ClusterTree::box(Index node, std::array<int, 3>& lo, std::array<int, 3>& hi
   const int s = 1 << l;
   const auto& dims = grids_[0].dims;
   if (!isPatch(node)) {
+    // Element by element: a vectorised loop over the axes reloaded the
+    // cell's indices as one 64-bit word from two 32-bit stores (a
+    // store-forwarding stall, 5% of a 64^3 solve's time).
     const auto c = grids_[l].ijk(cell(node));
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = c[a] * s;
-      hi[a] = std::min(lo[a] + s - 1, dims[a] - 1);
-    }
+    const int i = c[0] * s, j = c[1] * s, k = c[2] * s;
+    lo[0] = i;
+    lo[1] = j;
+    lo[2] = k;
+    hi[0] = std::min(i + s - 1, dims[0] - 1);
+    hi[1] = std::min(j + s - 1, dims[1] - 1);
+    hi[2] = std::min(k + s - 1, dims[2] - 1);
     return;
   }
   const PatchLocation loc = grids_[l].patchLocation(cell(node));

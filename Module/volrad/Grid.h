@@ -73,6 +73,11 @@ struct Grid
   Index index(int i, int j, int k) const { return i + Index(dims[0]) * (j + Index(dims[1]) * k); }
   std::array<int, 3> ijk(Index v) const
   {
+    if (std::uint64_t(v) <= 0xffffffffu) { // 32-bit division: cheaper, and asked per link candidate
+      const std::uint32_t u = std::uint32_t(v), d0 = std::uint32_t(dims[0]),
+                          d1 = std::uint32_t(dims[1]), r = u / d0;
+      return { int(u - r * d0), int(r % d1), int(r / d1) };
+    }
     const int i = int(v % dims[0]);
     const Index r = v / dims[0];
     return { i, int(r % dims[1]), int(r / dims[1]) };

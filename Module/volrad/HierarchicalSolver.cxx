@@ -338,7 +338,9 @@ Solution solveHierarchical(const Scene& scene,
   const Grid& g = scene.grid;
   const int C = scene.channels;
   const Index nv = g.voxelCount();
-  Solution sol = emptySolution(scene, "hierarchical");
+  // The fields (5 doubles a voxel and channel) are allocated once the first
+  // group's links are gone: not at the solve's peak, the link refinement.
+  Solution sol = emptySolution(scene, "hierarchical", false);
 
   tbb::task_arena arena(opt.threads > 0 ? opt.threads : tbb::task_arena::automatic);
   const ProgressRange progress(opt.progress, 0.0, 1.0);
@@ -539,23 +541,36 @@ Solution solveHierarchical(const Scene& scene,
         report.linksPerLevel[l] += links.pairsPerLevel[l];
       }
 
-      for (const auto& cp : channels) {
-        const Channel& c = *cp;
+      // Every channel's collided power C = S x + D and far views of the
+      // voxels that are not elements (none in a sparse solve) first: then
+      // the links go before the fields are allocated.
+      std::vector<Vector> collidedOf(channels.size());
+      std::vector<std::vector<double>> farViewOf(channels.size());
+      for (std::size_t k = 0; k < channels.size(); ++k) {
+        const Channel& c = *channels[k];
+        collidedOf[k] = c.sys.D;
+        farViewOf[k].assign(opt.emptySpaceFields ? nv : 0, 0.0);
+        near.apply(g, c.state.x.data(), collidedOf[k].data(), false);
+        far->apply(c.state.x.data(),
+                   collidedOf[k].data(),
+                   opt.emptySpaceFields ? farViewOf[k].data() : nullptr,
+                   gp.sub(0.95, 0.95));
+      }
+      far.reset();
+      links = LinkSet();
+      if (sol.G.empty()) {
+        allocateFields(scene, sol);
+      }
+
+      for (std::size_t k = 0; k < channels.size(); ++k) {
+        const Channel& c = *channels[k];
         const int ch = c.ch;
         sol.stats.converged = sol.stats.converged && c.state.converged;
         sol.stats.iterations += c.state.iterations;
         sol.stats.finalUnshot = std::max(sol.stats.finalUnshot, maxAbs(c.state.dx));
         report.shots += c.state.shots;
-
-        // Fields: collided power C = S x + D, and the views of other voxels.
-        Vector collided = c.sys.D;
-        // Far views of the voxels that are not elements (none in a sparse solve).
-        std::vector<double> farView(opt.emptySpaceFields ? nv : 0, 0.0);
-        near.apply(g, c.state.x.data(), collided.data(), false);
-        far->apply(c.state.x.data(),
-                   collided.data(),
-                   opt.emptySpaceFields ? farView.data() : nullptr,
-                   gp.sub(0.95, 0.95));
+        const Vector& collided = collidedOf[k];
+        const std::vector<double>& farView = farViewOf[k];
         const Vector& x = c.state.x;
         const DirectLighting& dl = c.dl;
         storeChannelFields(

@@ -45,17 +45,25 @@ ZonalSystem buildZonalSystem(const Scene& scene,
   return sys;
 }
 
-Solution emptySolution(const Scene& scene, const char* method)
+void allocateFields(const Scene& scene, Solution& sol)
 {
   const Index nv = scene.grid.voxelCount(), np = scene.grid.patchCount();
-  const int C = scene.channels;
-  Solution sol;
-  sol.channels = C;
+  const int C = sol.channels;
   for (auto* a : { &sol.G, &sol.Gplus, &sol.QI, &sol.QD, &sol.absorbed }) {
     a->assign(std::size_t(nv) * C, 0.0);
   }
   sol.B.assign(std::size_t(np) * C, 0.0);
   sol.H.assign(std::size_t(np) * C, 0.0);
+}
+
+Solution emptySolution(const Scene& scene, const char* method, bool withFields)
+{
+  const int C = scene.channels;
+  Solution sol;
+  sol.channels = C;
+  if (withFields) {
+    allocateFields(scene, sol);
+  }
   sol.energy.resize(C);
   sol.stats.method = method;
   sol.stats.converged = true;

@@ -29,8 +29,11 @@ ZonalSystem buildZonalSystem(const Scene& scene,
                              const ExchangeElements& el,
                              const DirectLighting& dl);
 
-/// A zero solution of the scene's size, for `method`.
-Solution emptySolution(const Scene& scene, const char* method);
+/// A zero solution of the scene's size, for `method`; without its fields
+/// (allocateFields later) when withFields is false.
+Solution emptySolution(const Scene& scene, const char* method, bool withFields = true);
+/// The voxel and patch fields of a solution, zero, at the scene's size.
+void allocateFields(const Scene& scene, Solution& sol);
 
 /// Writes the voxel and patch fields of one channel from the element
 /// radiosities x and collided powers C; G of voxels that are not elements
