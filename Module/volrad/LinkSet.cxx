@@ -36,10 +36,13 @@ struct Pair
   std::int32_t a, b;
 };
 
+/// An accepted link (by its lower end), or a direction of one waiting for
+/// its row (by its receiver), in 8 bytes instead of two indices and a float's
+/// 12: the accepted links are the refinement's peak memory. LinkPacking
+/// says how.
 struct Accepted
 {
-  std::int32_t a, b; ///< a < b (in the rows' pending lists: receiver, source)
-  float gamma;
+  std::uint64_t bits;
 };
 
 /// log of what a voxel leaf collides with or emits towards w, relative to
@@ -374,9 +377,64 @@ using ThreadLists = tbb::combinable<ChunkedList<T>>;
 
 /// Accepted links are kept by the slice of nodes their lower end is in, so
 /// that the rows can be written one slice of nodes at a time (refineLinks).
-constexpr int kRowSlices = 16;
 template<class T>
-using Sliced = std::array<ChunkedList<T>, kRowSlices>;
+using Sliced = std::vector<ChunkedList<T>>;
+
+/// Accepted's fields: the row's node as its offset in its slice, the other
+/// node, then the top bits of gamma's (positive) float, at least 19 of them:
+/// its 8 exponent bits and 11 of mantissa, all that GammaCode's rounding to
+/// 10 reads, so the rows are those of whole floats. The slices, a power of
+/// two from 16, are more in trees too large for that.
+struct LinkPacking
+{
+  explicit LinkPacking(Index nodes)
+  {
+    nodeBits = bitsFor(nodes);
+    for (slices = 16;; slices *= 2) {
+      sliceSize = (nodes + slices - 1) / slices;
+      offsetBits = bitsFor(sliceSize);
+      gammaBits = std::min(31, 64 - offsetBits - nodeBits);
+      if (gammaBits >= 19) {
+        break;
+      }
+    }
+  }
+  static int bitsFor(Index count) // bits to hold 0 .. count - 1
+  {
+    int b = 0;
+    while ((Index(1) << b) < count) {
+      ++b;
+    }
+    return b;
+  }
+  int sliceOf(Index n) const { return int(n / sliceSize); }
+  Accepted pack(Index row, Index other, float gamma) const
+  {
+    std::uint32_t g;
+    std::memcpy(&g, &gamma, sizeof g);
+    return { std::uint64_t(row % sliceSize) | (std::uint64_t(other) << offsetBits) |
+             (std::uint64_t(g >> (31 - gammaBits)) << (offsetBits + nodeBits)) };
+  }
+  Index row(const Accepted& x, int slice) const
+  {
+    return Index(slice) * sliceSize + Index(x.bits & ((std::uint64_t(1) << offsetBits) - 1));
+  }
+  Index other(const Accepted& x) const
+  {
+    return Index((x.bits >> offsetBits) & ((std::uint64_t(1) << nodeBits) - 1));
+  }
+  float gamma(const Accepted& x) const
+  {
+    const std::uint32_t g = std::uint32_t(x.bits >> (offsetBits + nodeBits)) << (31 - gammaBits);
+    float f;
+    std::memcpy(&f, &g, sizeof f);
+    return f;
+  }
+
+  int slices = 16;
+  Index sliceSize = 1;
+  int offsetBits = 0, nodeBits = 0, gammaBits = 31;
+};
 
 /// The lists of a combinable, one per thread that used it.
 template<class T>
@@ -534,9 +592,11 @@ LinkSet refineLinks(const ClusterTree& tree,
   }
   const double budget = opt.tolerance * opt.powerScale;
   const SpreadCorrection spread(tree.grid(0).spacing);
-  tbb::combinable<Sliced<Accepted>> accepted;
-  const Index sliceSize = (tree.size() + kRowSlices - 1) / kRowSlices;
-  auto sliceOf = [sliceSize](Index n) { return int(n / sliceSize); };
+  const LinkPacking packing(tree.size());
+  tbb::combinable<Sliced<Accepted>> accepted(
+    [&] { return Sliced<Accepted>(std::size_t(packing.slices)); });
+  const Index sliceSize = packing.sliceSize;
+  auto sliceOf = [&](Index n) { return packing.sliceOf(n); };
   int round = 0;
   // Candidates are examined in blocks, with a progress report (and so a
   // chance to abort) after each; rounds past the ninth share the last tenth.
@@ -623,7 +683,7 @@ LinkSet refineLinks(const ClusterTree& tree,
             if (link) {
               if (gamma > 0.0) {
                 const Index lo = std::min(a, b), hi = std::max(a, b);
-                keep[sliceOf(lo)].push_back({ std::int32_t(lo), std::int32_t(hi), float(gamma) });
+                keep[sliceOf(lo)].push_back(packing.pack(lo, hi, float(gamma)));
               }
               continue;
             }
@@ -680,9 +740,10 @@ LinkSet refineLinks(const ClusterTree& tree,
   // a comparison sort of tens of millions of links takes seconds and cannot
   // be interrupted), then each receiver's links ordered by source so that
   // the order does not depend on the threads.
-  std::array<std::vector<ChunkedList<Accepted>*>, kRowSlices> slices;
+  const int S = packing.slices;
+  std::vector<std::vector<ChunkedList<Accepted>*>> slices(S);
   accepted.combine_each([&](Sliced<Accepted>& lists) {
-    for (int j = 0; j < kRowSlices; ++j) {
+    for (int j = 0; j < S; ++j) {
       slices[j].push_back(&lists[j]);
     }
   });
@@ -690,14 +751,15 @@ LinkSet refineLinks(const ClusterTree& tree,
   out.pairsPerLevel.assign(tree.levels(), 0);
   out.start.assign(tree.size() + 1, 0);
   float largest = 0.f;
-  for (int j = 0; j < kRowSlices; ++j) {
-    const double p0 = 0.9 + 0.02 * j / kRowSlices, p1 = 0.9 + 0.02 * (j + 1) / kRowSlices;
+  for (int j = 0; j < S; ++j) {
+    const double p0 = 0.9 + 0.02 * j / S, p1 = 0.9 + 0.02 * (j + 1) / S;
     forEachInParts<false>(slices[j], progress.sub(p0, p1), [&](const Accepted& x) {
-      largest = std::max(largest, x.gamma);
+      const Index a = packing.row(x, j), b = packing.other(x);
+      largest = std::max(largest, packing.gamma(x));
       ++out.pairs;
-      ++out.pairsPerLevel[std::min(tree.level(x.a), tree.level(x.b))];
-      ++out.start[x.a + 1];
-      ++out.start[x.b + 1];
+      ++out.pairsPerLevel[std::min(tree.level(a), tree.level(b))];
+      ++out.start[a + 1];
+      ++out.start[b + 1];
     });
   }
   for (Index n = 0; n < tree.size(); ++n) {
@@ -730,8 +792,8 @@ LinkSet refineLinks(const ClusterTree& tree,
     }
   };
   tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
-  Sliced<Accepted> pending; // (receiver, source, gamma)
-  for (int j = 0; j < kRowSlices; ++j) {
+  Sliced<Accepted> pending(static_cast<std::size_t>(S)); // by receiver: (receiver, source, gamma)
+  for (int j = 0; j < S; ++j) {
     const Index n0 = std::min(tree.size(), j * sliceSize),
                 n1 = std::min(tree.size(), (j + 1) * sliceSize);
     sliceBegin = out.start[n0];
@@ -739,20 +801,24 @@ LinkSet refineLinks(const ClusterTree& tree,
     decltype(rawGamma)().swap(rawGamma);
     rawSource.resize(out.start[n1] - sliceBegin);
     rawGamma.resize(out.start[n1] - sliceBegin);
-    const double p0 = 0.92 + 0.08 * j / kRowSlices, p1 = 0.92 + 0.08 * (j + 1) / kRowSlices;
+    const double p0 = 0.92 + 0.08 * j / S, p1 = 0.92 + 0.08 * (j + 1) / S;
     const double q1 = p0 + 0.4 * (p1 - p0), q2 = p0 + 0.6 * (p1 - p0);
     forEachInParts<true>(slices[j], progress.sub(p0, q1), [&](const Accepted& x) {
-      write(x.a, x.b, x.gamma);
-      const int later = sliceOf(x.b);
+      const Index a = packing.row(x, j), b = packing.other(x);
+      const float gamma = packing.gamma(x);
+      write(a, b, gamma);
+      const int later = sliceOf(b);
       if (later == j) {
-        write(x.b, x.a, x.gamma);
+        write(b, a, gamma);
       } else {
-        pending[later].push_back({ x.b, x.a, x.gamma });
+        pending[later].push_back(packing.pack(b, a, gamma));
       }
     });
     forEachInParts<true>(std::vector<ChunkedList<Accepted>*>{ &pending[j] },
                          progress.sub(q1, q2),
-                         [&](const Accepted& x) { write(x.a, x.b, x.gamma); });
+                         [&](const Accepted& x) {
+                           write(packing.row(x, j), packing.other(x), packing.gamma(x));
+                         });
     // The rows are uninitialised until written: every one must be full.
     for (Index n = n0; n < n1; ++n) {
       if (cursor[n] != out.start[n + 1]) {
