@@ -36,14 +36,6 @@ struct Pair
   std::int32_t a, b;
 };
 
-/// An accepted link (by its lower end), or a direction of one waiting for
-/// its row (by its receiver), in 8 bytes instead of two indices and a float's
-/// 12: the accepted links are the refinement's peak memory. LinkPacking
-/// says how.
-struct Accepted
-{
-  std::uint64_t bits;
-};
 
 /// log of what a voxel leaf collides with or emits towards w, relative to
 /// its cross-section, per unit of the transmittance measured from its
@@ -380,61 +372,6 @@ using ThreadLists = tbb::combinable<ChunkedList<T>>;
 template<class T>
 using Sliced = std::vector<ChunkedList<T>>;
 
-/// Accepted's fields: the row's node as its offset in its slice, the other
-/// node, then the top bits of gamma's (positive) float, at least 19 of them:
-/// its 8 exponent bits and 11 of mantissa, all that GammaCode's rounding to
-/// 10 reads, so the rows are those of whole floats. The slices, a power of
-/// two from 16, are more in trees too large for that.
-struct LinkPacking
-{
-  explicit LinkPacking(Index nodes)
-  {
-    nodeBits = bitsFor(nodes);
-    for (slices = 16;; slices *= 2) {
-      sliceSize = (nodes + slices - 1) / slices;
-      offsetBits = bitsFor(sliceSize);
-      gammaBits = std::min(31, 64 - offsetBits - nodeBits);
-      if (gammaBits >= 19) {
-        break;
-      }
-    }
-  }
-  static int bitsFor(Index count) // bits to hold 0 .. count - 1
-  {
-    int b = 0;
-    while ((Index(1) << b) < count) {
-      ++b;
-    }
-    return b;
-  }
-  int sliceOf(Index n) const { return int(n / sliceSize); }
-  Accepted pack(Index row, Index other, float gamma) const
-  {
-    std::uint32_t g;
-    std::memcpy(&g, &gamma, sizeof g);
-    return { std::uint64_t(row % sliceSize) | (std::uint64_t(other) << offsetBits) |
-             (std::uint64_t(g >> (31 - gammaBits)) << (offsetBits + nodeBits)) };
-  }
-  Index row(const Accepted& x, int slice) const
-  {
-    return Index(slice) * sliceSize + Index(x.bits & ((std::uint64_t(1) << offsetBits) - 1));
-  }
-  Index other(const Accepted& x) const
-  {
-    return Index((x.bits >> offsetBits) & ((std::uint64_t(1) << nodeBits) - 1));
-  }
-  float gamma(const Accepted& x) const
-  {
-    const std::uint32_t g = std::uint32_t(x.bits >> (offsetBits + nodeBits)) << (31 - gammaBits);
-    float f;
-    std::memcpy(&f, &g, sizeof f);
-    return f;
-  }
-
-  int slices = 16;
-  Index sliceSize = 1;
-  int offsetBits = 0, nodeBits = 0, gammaBits = 31;
-};
 
 /// The lists of a combinable, one per thread that used it.
 template<class T>
@@ -593,8 +530,8 @@ LinkSet refineLinks(const ClusterTree& tree,
   const double budget = opt.tolerance * opt.powerScale;
   const SpreadCorrection spread(tree.grid(0).spacing);
   const LinkPacking packing(tree.size());
-  tbb::combinable<Sliced<Accepted>> accepted(
-    [&] { return Sliced<Accepted>(std::size_t(packing.slices)); });
+  tbb::combinable<Sliced<PackedLink>> accepted(
+    [&] { return Sliced<PackedLink>(std::size_t(packing.slices)); });
   const Index sliceSize = packing.sliceSize;
   auto sliceOf = [&](Index n) { return packing.sliceOf(n); };
   int round = 0;
@@ -724,7 +661,7 @@ LinkSet refineLinks(const ClusterTree& tree,
     ++round;
     if (opt.maxLinks > 0) {
       std::size_t count = todo.size();
-      accepted.combine_each([&](const Sliced<Accepted>& lists) {
+      accepted.combine_each([&](const Sliced<PackedLink>& lists) {
         for (const auto& l : lists) {
           count += l.size();
         }
@@ -741,8 +678,8 @@ LinkSet refineLinks(const ClusterTree& tree,
   // be interrupted), then each receiver's links ordered by source so that
   // the order does not depend on the threads.
   const int S = packing.slices;
-  std::vector<std::vector<ChunkedList<Accepted>*>> slices(S);
-  accepted.combine_each([&](Sliced<Accepted>& lists) {
+  std::vector<std::vector<ChunkedList<PackedLink>*>> slices(S);
+  accepted.combine_each([&](Sliced<PackedLink>& lists) {
     for (int j = 0; j < S; ++j) {
       slices[j].push_back(&lists[j]);
     }
@@ -753,7 +690,7 @@ LinkSet refineLinks(const ClusterTree& tree,
   float largest = 0.f;
   for (int j = 0; j < S; ++j) {
     const double p0 = 0.9 + 0.02 * j / S, p1 = 0.9 + 0.02 * (j + 1) / S;
-    forEachInParts<false>(slices[j], progress.sub(p0, p1), [&](const Accepted& x) {
+    forEachInParts<false>(slices[j], progress.sub(p0, p1), [&](const PackedLink& x) {
       const Index a = packing.row(x, j), b = packing.other(x);
       largest = std::max(largest, packing.gamma(x));
       ++out.pairs;
@@ -792,7 +729,7 @@ LinkSet refineLinks(const ClusterTree& tree,
     }
   };
   tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
-  Sliced<Accepted> pending(static_cast<std::size_t>(S)); // by receiver: (receiver, source, gamma)
+  Sliced<PackedLink> pending(static_cast<std::size_t>(S)); // by receiver: (receiver, source, gamma)
   for (int j = 0; j < S; ++j) {
     const Index n0 = std::min(tree.size(), j * sliceSize),
                 n1 = std::min(tree.size(), (j + 1) * sliceSize);
@@ -803,7 +740,7 @@ LinkSet refineLinks(const ClusterTree& tree,
     rawGamma.resize(out.start[n1] - sliceBegin);
     const double p0 = 0.92 + 0.08 * j / S, p1 = 0.92 + 0.08 * (j + 1) / S;
     const double q1 = p0 + 0.4 * (p1 - p0), q2 = p0 + 0.6 * (p1 - p0);
-    forEachInParts<true>(slices[j], progress.sub(p0, q1), [&](const Accepted& x) {
+    forEachInParts<true>(slices[j], progress.sub(p0, q1), [&](const PackedLink& x) {
       const Index a = packing.row(x, j), b = packing.other(x);
       const float gamma = packing.gamma(x);
       write(a, b, gamma);
@@ -814,9 +751,9 @@ LinkSet refineLinks(const ClusterTree& tree,
         pending[later].push_back(packing.pack(b, a, gamma));
       }
     });
-    forEachInParts<true>(std::vector<ChunkedList<Accepted>*>{ &pending[j] },
+    forEachInParts<true>(std::vector<ChunkedList<PackedLink>*>{ &pending[j] },
                          progress.sub(q1, q2),
-                         [&](const Accepted& x) {
+                         [&](const PackedLink& x) {
                            write(packing.row(x, j), packing.other(x), packing.gamma(x));
                          });
     // The rows are uninitialised until written: every one must be full.

@@ -39,6 +39,7 @@
 #include "volrad/Progress.h"
 
 #include <cstdint>
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <utility>
@@ -157,6 +158,71 @@ struct LinkSet
     return start.size() * sizeof(Index) + step.size() * 2 * sizeof(std::uint16_t) +
            (farSource.size() + farStart.size()) * sizeof(std::int32_t);
   }
+};
+
+/// An accepted link (by its lower end), or a direction of one waiting for
+/// its row (by its receiver), in 8 bytes instead of two indices and a float's
+/// 12: the accepted links are the refinement's peak memory. LinkPacking
+/// says how.
+struct PackedLink
+{
+  std::uint64_t bits;
+};
+
+/// PackedLink's fields: the row's node as its offset in its slice, the other
+/// node, then the top bits of gamma's (positive) float, at least 19 of them:
+/// its 8 exponent bits and 11 of mantissa, all that GammaCode's rounding to
+/// 10 reads, so the rows are those of whole floats. The slices, a power of
+/// two from 16, are more in trees too large for that.
+struct LinkPacking
+{
+  explicit LinkPacking(Index nodes)
+  {
+    nodeBits = bitsFor(nodes);
+    for (slices = 16;; slices *= 2) {
+      sliceSize = (nodes + slices - 1) / slices;
+      offsetBits = bitsFor(sliceSize);
+      gammaBits = std::min(31, 64 - offsetBits - nodeBits);
+      if (gammaBits >= 19) {
+        break;
+      }
+    }
+  }
+  static int bitsFor(Index count) // bits to hold 0 .. count - 1
+  {
+    int b = 0;
+    while ((Index(1) << b) < count) {
+      ++b;
+    }
+    return b;
+  }
+  int sliceOf(Index n) const { return int(n / sliceSize); }
+  PackedLink pack(Index row, Index other, float gamma) const
+  {
+    std::uint32_t g;
+    std::memcpy(&g, &gamma, sizeof g);
+    return { std::uint64_t(row % sliceSize) | (std::uint64_t(other) << offsetBits) |
+             (std::uint64_t(g >> (31 - gammaBits)) << (offsetBits + nodeBits)) };
+  }
+  Index row(const PackedLink& x, int slice) const
+  {
+    return Index(slice) * sliceSize + Index(x.bits & ((std::uint64_t(1) << offsetBits) - 1));
+  }
+  Index other(const PackedLink& x) const
+  {
+    return Index((x.bits >> offsetBits) & ((std::uint64_t(1) << nodeBits) - 1));
+  }
+  float gamma(const PackedLink& x) const
+  {
+    const std::uint32_t g = std::uint32_t(x.bits >> (offsetBits + nodeBits)) << (31 - gammaBits);
+    float f;
+    std::memcpy(&f, &g, sizeof f);
+    return f;
+  }
+
+  int slices = 16;
+  Index sliceSize = 1;
+  int offsetBits = 0, nodeBits = 0, gammaBits = 31;
 };
 
 /// gamma of a link (see above).

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -94,4 +95,40 @@ TEST(LinkSet, GammaCodeIsWithinItsRoundingAndKeepsTheOrder)
   EXPECT_EQ(code.decode(code.encode(largest * std::ldexp(1.0, -70))), 0.0);
   const double justBelow = std::nextafter(std::ldexp(1.0, 10), 0.0);
   EXPECT_EQ(code.decode(code.encode(justBelow)), std::ldexp(1.0, 10));
+}
+
+TEST(LinkSet, PackedLinksGiveBackTheirNodesAndTheRowsGammaCodes)
+{
+  // From a handful of nodes to the 32-bit limit (2^31 - 1, where the slices
+  // multiply): every node, and a gamma whose stored code (GammaCode, rounded
+  // from its top 11 mantissa bits) is that of the whole float.
+  std::uint64_t state = 12345;
+  auto next = [&] { // a 64-bit linear congruential generator
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return state >> 11;
+  };
+  const GammaCode code = GammaCode::forLargest(1e3);
+  for (const Index nodes : { Index(1), Index(37), Index(3'100'000), Index(19'200'000),
+                             Index(40'000'000), Index(2'147'483'647) }) {
+    const LinkPacking p(nodes);
+    EXPECT_GE(p.gammaBits, 19) << nodes;
+    EXPECT_GE(p.slices, 16) << nodes;
+    EXPECT_EQ(p.slices & (p.slices - 1), 0) << nodes;
+    EXPECT_GE(Index(p.slices) * p.sliceSize, nodes);
+    for (int k = 0; k < 20000; ++k) {
+      const Index row = Index(next() % std::uint64_t(nodes)),
+                  other = k == 0 ? nodes - 1 : Index(next() % std::uint64_t(nodes));
+      const float gamma =
+        float(std::ldexp(1.0 + double(next() % 1000000) / 1e6, int(next() % 120) - 100));
+      const PackedLink x = p.pack(row, other, gamma);
+      const int slice = p.sliceOf(row);
+      ASSERT_LT(slice, p.slices);
+      ASSERT_EQ(p.row(x, slice), row) << nodes;
+      ASSERT_EQ(p.other(x), other) << nodes;
+      const float back = p.gamma(x);
+      ASSERT_LE(back, gamma);
+      ASSERT_LE(gamma - back, gamma * std::ldexp(1.0, 8 - p.gammaBits)) << nodes;
+      ASSERT_EQ(code.encode(back), code.encode(gamma)) << nodes << " " << gamma;
+    }
+  }
 }
