@@ -66,9 +66,11 @@ struct LinkRefinement
 };
 
 /// Peak bytes one link costs while links are refined and stored (measured
-/// 10-14 on the benchmark scenes at 32^3-64^3, the whole solve's peak less
-/// what it needs without links, per link; the margin keeps the budget check
-/// from letting an out-of-memory crash through).
+/// 10-14 on the benchmark scenes at 32^3-64^3 with 12-byte accepted links,
+/// the whole solve's peak less what it needs without links, per link; 2-3
+/// fewer with PackedLink where the rows' writing is the peak, as many where
+/// the candidates are, such as the smoke at full size; the margin keeps the
+/// budget check from letting an out-of-memory crash through).
 constexpr std::size_t kBytesPerLink = 20;
 
 /// An allocator whose resize leaves new elements uninitialised, so that a
