@@ -36,7 +36,6 @@ struct Pair
   std::int32_t a, b;
 };
 
-
 /// log of what a voxel leaf collides with or emits towards w, relative to
 /// its cross-section, per unit of the transmittance measured from its
 /// centre: integral over the voxel of kappa exp(kappa (x - c).w) dx, which
@@ -372,7 +371,6 @@ using ThreadLists = tbb::combinable<ChunkedList<T>>;
 template<class T>
 using Sliced = std::vector<ChunkedList<T>>;
 
-
 /// The lists of a combinable, one per thread that used it.
 template<class T>
 std::vector<ChunkedList<T>*> partsOf(ThreadLists<T>& c)
@@ -533,7 +531,6 @@ LinkSet refineLinks(const ClusterTree& tree,
   tbb::combinable<Sliced<PackedLink>> accepted(
     [&] { return Sliced<PackedLink>(std::size_t(packing.slices)); });
   const Index sliceSize = packing.sliceSize;
-  auto sliceOf = [&](Index n) { return packing.sliceOf(n); };
   int round = 0;
   // Candidates are examined in blocks, with a progress report (and so a
   // chance to abort) after each; rounds past the ninth share the last tenth.
@@ -620,7 +617,8 @@ LinkSet refineLinks(const ClusterTree& tree,
             if (link) {
               if (gamma > 0.0) {
                 const Index lo = std::min(a, b), hi = std::max(a, b);
-                keep[sliceOf(lo)].push_back(packing.pack(lo, hi, float(gamma)));
+                const int slice = packing.sliceOf(lo);
+                keep[slice].push_back(packing.pack(lo, slice, hi, float(gamma)));
               }
               continue;
             }
@@ -744,11 +742,11 @@ LinkSet refineLinks(const ClusterTree& tree,
       const Index a = packing.row(x, j), b = packing.other(x);
       const float gamma = packing.gamma(x);
       write(a, b, gamma);
-      const int later = sliceOf(b);
+      const int later = packing.sliceOf(b);
       if (later == j) {
         write(b, a, gamma);
       } else {
-        pending[later].push_back(packing.pack(b, a, gamma));
+        pending[later].push_back(packing.pack(b, later, a, gamma));
       }
     });
     forEachInParts<true>(std::vector<ChunkedList<PackedLink>*>{ &pending[j] },

@@ -38,8 +38,8 @@
 #include "volrad/ClusterTree.h"
 #include "volrad/Progress.h"
 
-#include <cstdint>
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <utility>
@@ -199,11 +199,12 @@ struct LinkPacking
     return b;
   }
   int sliceOf(Index n) const { return int(n / sliceSize); }
-  PackedLink pack(Index row, Index other, float gamma) const
+  /// `slice` is sliceOf(row), which the caller has already (no division here).
+  PackedLink pack(Index row, int slice, Index other, float gamma) const
   {
     std::uint32_t g;
     std::memcpy(&g, &gamma, sizeof g);
-    return { std::uint64_t(row % sliceSize) | (std::uint64_t(other) << offsetBits) |
+    return { std::uint64_t(row - Index(slice) * sliceSize) | (std::uint64_t(other) << offsetBits) |
              (std::uint64_t(g >> (31 - gammaBits)) << (offsetBits + nodeBits)) };
   }
   Index row(const PackedLink& x, int slice) const

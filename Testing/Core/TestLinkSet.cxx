@@ -120,8 +120,8 @@ TEST(LinkSet, PackedLinksGiveBackTheirNodesAndTheRowsGammaCodes)
                   other = k == 0 ? nodes - 1 : Index(next() % std::uint64_t(nodes));
       const float gamma =
         float(std::ldexp(1.0 + double(next() % 1000000) / 1e6, int(next() % 120) - 100));
-      const PackedLink x = p.pack(row, other, gamma);
       const int slice = p.sliceOf(row);
+      const PackedLink x = p.pack(row, slice, other, gamma);
       ASSERT_LT(slice, p.slices);
       ASSERT_EQ(p.row(x, slice), row) << nodes;
       ASSERT_EQ(p.other(x), other) << nodes;
