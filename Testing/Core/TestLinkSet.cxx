@@ -112,7 +112,7 @@ TEST(LinkSet, PackedLinksGiveBackTheirNodesAndTheRowsGammaCodes)
                              Index(40'000'000), Index(2'147'483'647) }) {
     const LinkPacking p(nodes);
     EXPECT_GE(p.gammaBits, 19) << nodes;
-    EXPECT_GE(p.slices, 16) << nodes;
+    EXPECT_GE(p.slices, LinkPacking::kFewestSlices) << nodes;
     EXPECT_EQ(p.slices & (p.slices - 1), 0) << nodes;
     EXPECT_GE(Index(p.slices) * p.sliceSize, nodes);
     for (int k = 0; k < 20000; ++k) {
