@@ -36,6 +36,9 @@ using Vector = Eigen::VectorXd;
 /// the largest.
 constexpr double kRadiosityFloor = 1e-2;
 
+/// Voxels (128^3) past which the budget's floor of links stops growing.
+constexpr double kFewestLinksFlatFrom = 128.0 * 128.0 * 128.0;
+
 /// How much coarser the first pass's links are than the final ones. The
 /// first pass only estimates where the light goes, and its power scale is
 /// the emission and direct light's, before the many bounces of a
@@ -317,13 +320,18 @@ Solution solveHierarchical(const Scene& scene,
                              double(mediumVoxels);
   // The fewest links a voxel needs: at the default tolerance (3e-7) the
   // fewest measured are 37 a voxel (the smoke at 111x222x112, 2.8 M voxels;
-  // the phantom at 128^3 50, the cube 71), falling on finer grids (the
-  // tolerance is a fraction of the whole scene's power), and about 2.2x
-  // fewer per decade of tolerance. The floor is about half the fewest: a
-  // solve that would surely pass the budget is refused now, not after its
-  // near field; the others are stopped in the refinement if they do.
+  // the phantom at 128^3 50, the cube 71), and about 2.2x fewer per decade
+  // of tolerance. The floor is about half the fewest: a solve that would
+  // surely pass the budget is refused now, not after its near field; the
+  // others are stopped in the refinement if they do. Past 128^3 voxels the
+  // floor is one of links, not of links a voxel: the tolerance is a
+  // fraction of the whole scene's power, so links a voxel fall on finer
+  // grids (the phantom: 1180 at 32^3, 370 at 64^3, 50 at 128^3, 16 at
+  // 256^3), and a floor of 20 a voxel refused the phantom at 256^3 at once
+  // (342 M links), which then needed 276 M and 7.7 GiB.
+  const double perVoxel = std::min(1.0, kFewestLinksFlatFrom / linkedVoxels);
   const double fewestLinks =
-    linkedVoxels * std::max(5.0, 30.0 * std::pow(1e-7 / linkTolerance, 0.35));
+    linkedVoxels * perVoxel * std::max(5.0, 30.0 * std::pow(1e-7 / linkTolerance, 0.35));
   const double linkBytes = fewestLinks * double(kBytesPerLink);
   if (baseBytes + linkBytes > memoryLimit) {
     std::ostringstream msg;
