@@ -7,7 +7,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 
@@ -17,8 +19,8 @@ namespace {
 
 constexpr double kNegligibleTransmittance = 1e-13;
 
-/// Accumulates rays into per-thread buffers, merged in a fixed order. The
-/// front part only where some voxel has a normal (else it stays empty).
+/// What the rays leave: per voxel (track, and the front part only where
+/// some voxel has a normal, else it stays empty) and per exit patch.
 struct RayTally
 {
   std::vector<double> track, trackFront, patchPower;
@@ -29,19 +31,96 @@ struct RayTally
     , patchPower(std::size_t(g.patchCount()), 0.0)
   {
   }
-  void add(const RayTally& o)
+};
+
+/// One chunk of rays' tally within a wave: per voxel in blocks of 4x4x4
+/// allocated where its rays pass, since a full-size tally per chunk (16 of
+/// them) was the solve's peak at 256^3 (4.3 GB with fronts); per patch in
+/// full (a surface: small), for all the waves.
+class ChunkTally
+{
+public:
+  static constexpr int kSide = 4, kVoxels = kSide * kSide * kSide;
+
+  ChunkTally(const Grid& g, bool fronts)
+    : patchPower(std::size_t(g.patchCount()), 0.0)
+    , grid_(g)
+    , fronts_(fronts)
   {
-    for (std::size_t i = 0; i < track.size(); ++i) {
-      track[i] += o.track[i];
+    for (int a = 0; a < 3; ++a) {
+      blocks_[a] = (g.dims[a] + kSide - 1) / kSide;
     }
-    for (std::size_t i = 0; i < trackFront.size(); ++i) {
-      trackFront[i] += o.trackFront[i];
-    }
-    for (std::size_t i = 0; i < patchPower.size(); ++i) {
-      patchPower[i] += o.patchPower[i];
-    }
-    entering += o.entering;
+    slot_.assign(std::size_t(blocks_[0]) * blocks_[1] * blocks_[2], -1);
   }
+
+  void addTrack(Index v, double add, bool front)
+  {
+    const auto c = grid_.ijk(v);
+    const std::size_t b =
+      std::size_t(c[0] / kSide) +
+      std::size_t(blocks_[0]) * (std::size_t(c[1] / kSide) + std::size_t(blocks_[1]) * (c[2] / kSide));
+    if (slot_[b] < 0) {
+      slot_[b] = std::int32_t(used_.size());
+      used_.push_back(std::int32_t(b));
+      values_.resize(values_.size() + (fronts_ ? 2 : 1) * kVoxels, 0.0);
+    }
+    const int offset = c[0] % kSide + kSide * (c[1] % kSide + kSide * (c[2] % kSide));
+    double* block = values_.data() + std::size_t(slot_[b]) * (fronts_ ? 2 : 1) * kVoxels;
+    block[offset] += add;
+    if (front) {
+      block[kVoxels + offset] += add;
+    }
+  }
+
+  const std::vector<std::int32_t>& usedBlocks() const { return used_; }
+
+  /// Adds this chunk's part in block b (if any) to the total.
+  void addBlockTo(std::int32_t b, RayTally& total) const
+  {
+    if (slot_[b] < 0) {
+      return;
+    }
+    const double* block = values_.data() + std::size_t(slot_[b]) * (fronts_ ? 2 : 1) * kVoxels;
+    const int bi = b % blocks_[0], bj = (b / blocks_[0]) % blocks_[1],
+              bk = b / (blocks_[0] * blocks_[1]);
+    for (int k = 0; k < kSide; ++k) {
+      for (int j = 0; j < kSide; ++j) {
+        for (int i = 0; i < kSide; ++i) {
+          const int x = bi * kSide + i, y = bj * kSide + j, z = bk * kSide + k;
+          if (x >= grid_.dims[0] || y >= grid_.dims[1] || z >= grid_.dims[2]) {
+            continue;
+          }
+          const int o = i + kSide * (j + kSide * k);
+          const Index v = grid_.index(x, y, z);
+          total.track[v] += block[o];
+          if (fronts_) {
+            total.trackFront[v] += block[kVoxels + o];
+          }
+        }
+      }
+    }
+  }
+
+  /// Empties the voxel blocks for the next wave (their memory kept).
+  void clearBlocks()
+  {
+    for (const std::int32_t b : used_) {
+      slot_[b] = -1;
+    }
+    used_.clear();
+    values_.clear();
+  }
+
+  std::vector<double> patchPower;
+  double entering = 0.0;
+
+private:
+  const Grid& grid_;
+  bool fronts_;
+  std::array<int, 3> blocks_{};
+  std::vector<std::int32_t> slot_; ///< per block, its place in values_, or -1
+  std::vector<std::int32_t> used_; ///< the blocks with a place, in that order
+  std::vector<double> values_;
 };
 
 /// Follows a ray of power w that is inside the domain from parameter 0 on.
@@ -50,7 +129,7 @@ void followRay(const Scene& scene,
                const Vec3& x,
                const Vec3& d,
                double w,
-               RayTally& tally)
+               ChunkTally& tally)
 {
   const bool normals = !scene.normals.empty();
   double T = 1.0;
@@ -61,10 +140,7 @@ void followRay(const Scene& scene,
       // (1 - e^{-k l}) / k, exact also where k l is tiny.
       const double lengthWeighted = k * l > 1e-300 ? -std::expm1(-k * l) / k : l;
       const double add = w * T * lengthWeighted;
-      tally.track[v] += add;
-      if (normals && scene.normalDot(v, d) < 0.0) {
-        tally.trackFront[v] += add;
-      }
+      tally.addTrack(v, add, normals && scene.normalDot(v, d) < 0.0);
       T *= e;
       return T > kNegligibleTransmittance;
     });
@@ -78,9 +154,9 @@ constexpr Index kRaysPerWave = Index(1) << 18;
 
 /// Runs f(begin, end, tally) over [0, count) in waves of `perWave` items,
 /// each wave in a fixed number of chunks in parallel, reporting progress (a
-/// chance to stop) after each wave. Chunk i of every wave adds into tally i
-/// and the tallies are merged in order at the end: the sums do not depend
-/// on thread scheduling.
+/// chance to stop) after each wave. Each wave's chunks are added to the
+/// total in order, voxel block by voxel block, and the patches' at the end:
+/// the sums do not depend on thread scheduling or count.
 template<class F>
 void forChunks(const Grid& g,
                Index count,
@@ -89,21 +165,38 @@ void forChunks(const Grid& g,
                const ProgressRange& progress,
                F&& f)
 {
-  // A fixed number: each chunk holds a full-size tally.
   const Index chunks = std::min<Index>(std::min(count, perWave), 16);
-  std::vector<std::unique_ptr<RayTally>> partial(std::max<Index>(0, chunks));
+  std::vector<std::unique_ptr<ChunkTally>> partial(std::max<Index>(0, chunks));
+  std::vector<std::int32_t> blocks;
   for (Index w0 = 0; w0 < count; w0 += perWave) {
     const Index n = std::min(count - w0, perWave);
     tbb::parallel_for(Index(0), chunks, [&](Index ci) {
       if (!partial[ci]) {
-        partial[ci] = std::make_unique<RayTally>(g, !total.trackFront.empty());
+        partial[ci] = std::make_unique<ChunkTally>(g, !total.trackFront.empty());
       }
       f(w0 + ci * n / chunks, w0 + (ci + 1) * n / chunks, *partial[ci]);
     });
+    blocks.clear();
+    for (const auto& p : partial) {
+      blocks.insert(blocks.end(), p->usedBlocks().begin(), p->usedBlocks().end());
+    }
+    std::sort(blocks.begin(), blocks.end());
+    blocks.erase(std::unique(blocks.begin(), blocks.end()), blocks.end());
+    tbb::parallel_for(std::size_t(0), blocks.size(), [&](std::size_t i) {
+      for (const auto& p : partial) {
+        p->addBlockTo(blocks[i], total);
+      }
+    });
+    for (const auto& p : partial) {
+      p->clearBlocks();
+    }
     progress.report(double(w0 + n) / double(count));
   }
   for (const auto& p : partial) {
-    total.add(*p);
+    for (std::size_t i = 0; i < total.patchPower.size(); ++i) {
+      total.patchPower[i] += p->patchPower[i];
+    }
+    total.entering += p->entering;
   }
 }
 
@@ -141,7 +234,7 @@ void addDirectional(const Scene& scene,
               std::max<Index>(1, kRaysPerWave / (s * s)),
               tally,
               progress.sub(fi / double(kFaceCount), (fi + 1) / double(kFaceCount)),
-              [&](Index begin, Index end, RayTally& local) {
+              [&](Index begin, Index end, ChunkTally& local) {
                 for (Index p = first + begin; p < first + end; ++p) {
                   const Vec3 lower = g.patchLower(p);
                   for (int b = 0; b < s; ++b) {
@@ -199,7 +292,7 @@ void addPoint(const Scene& scene,
   Rng rotRng(q.seed ^ 0x706f696e74ULL, lightIndex);
   const Eigen::Matrix3d spin =
     frame * Eigen::AngleAxisd(2 * kPi * rotRng.uniform(), Vec3::UnitZ()).toRotationMatrix();
-  forChunks(g, rays, kRaysPerWave, tally, progress, [&](Index begin, Index end, RayTally& local) {
+  forChunks(g, rays, kRaysPerWave, tally, progress, [&](Index begin, Index end, ChunkTally& local) {
     for (Index i = begin; i < end; ++i) {
       // Equal-solid-angle spiral in the cone.
       const double cosT = 1.0 - (1.0 - cosMax) * (i + 0.5) / double(rays);

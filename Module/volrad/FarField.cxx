@@ -33,6 +33,15 @@ void forEach(Index n, F&& f)
   forEachIn(0, n, f);
 }
 
+std::array<float, 6> toFloat(const std::array<double, 6>& a)
+{
+  std::array<float, 6> f;
+  for (int i = 0; i < 6; ++i) {
+    f[i] = float(a[i]);
+  }
+  return f;
+}
+
 /// Links in the gather's blocks between progress reports: the first, the
 /// most (tens of ns each).
 constexpr std::int64_t kFirstLinks = 1 << 18, kMaxLinks = 1 << 22;
@@ -60,24 +69,24 @@ FarField::FarField(const Scene& scene,
 {
   const Index nodes = tree.size();
   centroid_.resize(nodes);
-  forEach(nodes, [&](Index k) { centroid_[k] = tree.centroid(k); });
+  forEach(nodes, [&](Index k) { centroid_[k] = tree.centroid(k).cast<float>(); });
   const Index nv = tree.grid(0).voxelCount();
   clusters_ = tree.voxelNode(tree.levels() - 1, 0) + 1 - nv;
   slopeLimit_.resize(clusters_);
   forEach(clusters_, [&](Index c) { slopeLimit_[c] = float(1.0 / tree.radius(nv + c)); });
   sideEmit_.assign(clusters_, {});
   sidePhi_.assign(clusters_, {});
-  moment_.assign(clusters_, Vec3::Zero());
-  gradient_.assign(clusters_, Vec3::Zero());
-  emit_.assign(nodes, 0.0);
-  phi_.assign(nodes, 0.0);
+  moment_.assign(clusters_, Vec3f::Zero());
+  gradient_.assign(clusters_, Vec3f::Zero());
+  emit_.assign(nodes, 0.f);
+  phi_.assign(nodes, 0.f);
   if (fronts_) {
-    frontEmit_.assign(nodes, 0.0);
-    frontMoment_.assign(nodes, Vec3::Zero());
-    psi_.assign(nodes, Vec3::Zero());
-    open_.assign(nodes, 0.0);
-    leafDirect_.assign(tree.grid(0).voxelCount(), 0.0);
-    leafFront_.assign(tree.grid(0).voxelCount(), 0.0);
+    frontEmit_.assign(nodes, 0.f);
+    frontMoment_.assign(nodes, Vec3f::Zero());
+    psi_.assign(nodes, Vec3f::Zero());
+    open_.assign(nodes, 0.f);
+    leafDirect_.assign(tree.grid(0).voxelCount(), 0.f);
+    leafFront_.assign(tree.grid(0).voxelCount(), 0.f);
   }
   // Balance the links' operator F symmetrically, F' = D F D, towards every
   // element receiving exactly its far weight for radiosity 1 on the
@@ -152,16 +161,18 @@ void FarField::gather(const double* x,
   // Pull: the elements' emission per unit gamma, summed up the tree.
   forEach(nv, [&](Index v) {
     const Index e = el_.full[v];
-    emit_[v] = e >= 0 ? tree_.sigma(v) * x[e] : 0.0;
+    emit_[v] = e >= 0 ? float(tree_.sigma(v) * x[e]) : 0.f;
     if (fronts_) {
       const Index f = el_.front[v];
-      frontEmit_[v] = f >= 0 ? tree_.sigma(v) * x[f] : 0.0;
-      frontMoment_[v] =
-        frontEmit_[v] != 0.0 ? Vec3(frontEmit_[v] * unitNormal(scene_, v)) : Vec3::Zero();
+      frontEmit_[v] = f >= 0 ? float(tree_.sigma(v) * x[f]) : 0.f;
+      frontMoment_[v] = frontEmit_[v] != 0.f
+                          ? Vec3f((double(frontEmit_[v]) * unitNormal(scene_, v)).cast<float>())
+                          : Vec3f::Zero();
     }
   });
   forEach(np, [&](Index p) {
-    emit_[tree_.patchNode(0, p)] = tree_.sigma(tree_.patchNode(0, p)) * x[el_.patchElement(p)];
+    emit_[tree_.patchNode(0, p)] =
+      float(tree_.sigma(tree_.patchNode(0, p)) * x[el_.patchElement(p)]);
   });
   for (int l = 1; l < L; ++l) {
     forEachNodeOfLevel(tree_, l, [&](Index node, bool patches) {
@@ -173,28 +184,28 @@ void FarField::gather(const double* x,
       for (int i = 0; i < k; ++i) {
         s += emit_[kids[i]];
         if (!patches) {
-          moment += emit_[kids[i]] * (centroid_[kids[i]] - centroid_[node]);
+          moment += double(emit_[kids[i]]) * (centroid(kids[i]) - centroid(node));
           if (l > 1) {
-            moment += moment_[kids[i] - nv];
+            moment += moment_[kids[i] - nv].cast<double>();
           }
           for (int f = 0; f < 6; ++f) { // seen through the siblings in front
-            sides[f] += (l == 1 ? emit_[kids[i]] : sideEmit_[kids[i] - nv][f]) *
+            sides[f] += double(l == 1 ? emit_[kids[i]] : sideEmit_[kids[i] - nv][f]) *
                         double(tree_.toParentSide(kids[i], f));
           }
         }
         if (fronts_ && !patches) {
           d += frontEmit_[kids[i]];
-          m += frontMoment_[kids[i]];
+          m += frontMoment_[kids[i]].cast<double>();
         }
       }
-      emit_[node] = s;
+      emit_[node] = float(s);
       if (!patches) {
-        moment_[node - nv] = moment;
-        sideEmit_[node - nv] = sides;
+        moment_[node - nv] = moment.cast<float>();
+        sideEmit_[node - nv] = toFloat(sides);
       }
       if (fronts_ && !patches) {
-        frontEmit_[node] = d;
-        frontMoment_[node] = m;
+        frontEmit_[node] = float(d);
+        frontMoment_[node] = m.cast<float>();
       }
     });
   }
@@ -203,7 +214,7 @@ void FarField::gather(const double* x,
   auto gatherInto = [&](Index b) {
     const bool patchB = tree_.isPatch(b), leafB = tree_.isLeaf(b);
     const bool frontB = fronts_ && !patchB && leafB && el_.front[b] >= 0;
-    const Vec3 cb = centroid_[b];
+    const Vec3 cb = centroid(b);
     Vec3 nb = Vec3::Zero();
     if (patchB) {
       nb = faceInwardNormal(tree_.face(b));
@@ -223,13 +234,13 @@ void FarField::gather(const double* x,
         return;
       }
       const bool patchA = tree_.isPatch(a);
-      const bool frontA = fronts_ && !patchA && frontEmit_[a] != 0.0;
+      const bool frontA = fronts_ && !patchA && frontEmit_[a] != 0.f;
       double e = emit_[a];
       if (e == 0.0 && !frontA) {
         return;
       }
       const bool clusterA = isVoxelCluster(a, nv);
-      const Vec3 ab = cb - centroid_[a];
+      const Vec3 ab = cb - centroid(a);
       // One division a link (it runs at every link of every gather).
       const double inverseR = 1.0 / ab.norm(), twoOverR = 2.0 * inverseR;
       const Vec3 w = ab * inverseR; // from a towards b
@@ -237,7 +248,7 @@ void FarField::gather(const double* x,
       // 1/r^2 grows by 2/r per length of its elements' offsets towards b
       // (to first order, limited so that no element's weight is negative).
       if (clusterA) {
-        e = std::min(twoOverR, double(slopeLimit_[a - nv])) * w.dot(moment_[a - nv]) +
+        e = std::min(twoOverR, double(slopeLimit_[a - nv])) * w.dot(moment_[a - nv].cast<double>()) +
             ClusterTree::towards(w, tree_.sideOpenness(a).data(), sideEmit_[a - nv]);
       }
       if (patchA) {
@@ -248,7 +259,7 @@ void FarField::gather(const double* x,
           e += unitNormal(scene_, a).dot(w) > 0.0 ? d : 0.0;
         } else {
           e +=
-            std::clamp(0.5 * d + 0.75 * frontMoment_[a].dot(w), std::min(0.0, d), std::max(0.0, d));
+            std::clamp(0.5 * d + 0.75 * frontMoment_[a].cast<double>().dot(w), std::min(0.0, d), std::max(0.0, d));
         }
       }
       const double c = e * double(gamma);
@@ -274,17 +285,17 @@ void FarField::gather(const double* x,
         open += c;
       }
     });
-    phi_[b] = phi;
+    phi_[b] = float(phi);
     if (clusterB) {
-      gradient_[b - nv] = gradient;
-      sidePhi_[b - nv] = sides;
+      gradient_[b - nv] = gradient.cast<float>();
+      sidePhi_[b - nv] = toFloat(sides);
     }
     if (fronts_ && !patchB) {
-      psi_[b] = psi;
-      open_[b] = open;
+      psi_[b] = psi.cast<float>();
+      open_[b] = float(open);
       if (leafB) {
-        leafDirect_[b] = direct;
-        leafFront_[b] = front;
+        leafDirect_[b] = float(direct);
+        leafFront_[b] = float(front);
       }
     }
   };
@@ -319,15 +330,16 @@ void FarField::gather(const double* x,
             const auto& in = sidePhi_[node - nv];
             double seen = 0.0;
             for (int f = 0; f < 6; ++f) {
-              const double t = tree_.toParentSide(kids[i], f);
+              const float t = tree_.toParentSide(kids[i], f);
               if (l > 1) {
                 sidePhi_[kids[i] - nv][f] += in[f] * t;
               } else {
                 seen += in[f] * t;
               }
             }
-            const Vec3& gradient = gradient_[node - nv];
-            phi_[kids[i]] += seen + gradient.dot(centroid_[kids[i]] - centroid_[node]);
+            const Vec3f& gradient = gradient_[node - nv];
+            phi_[kids[i]] +=
+              float(seen + gradient.cast<double>().dot(centroid(kids[i]) - centroid(node)));
             if (l > 1) {
               gradient_[kids[i] - nv] += gradient;
             }
@@ -357,7 +369,7 @@ void FarField::gather(const double* x,
       // (frontEmit_), so they receive from them the same way: symmetric.
       const double pushed = open_[v];
       const double front =
-        leafFront_[v] + std::clamp(0.5 * pushed + 0.75 * unitNormal(scene_, v).dot(psi_[v]),
+        leafFront_[v] + std::clamp(0.5 * pushed + 0.75 * unitNormal(scene_, v).dot(psi_[v].cast<double>()),
                                    std::min(0.0, pushed),
                                    std::max(0.0, pushed));
       y[f] += (normalised ? scale_[f] : 1.0) * tree_.sigma(v) * front;
@@ -373,13 +385,13 @@ void FarField::gather(const double* x,
 std::size_t FarField::bytes() const
 {
   return (emit_.size() + phi_.size() + open_.size() + frontEmit_.size() + leafDirect_.size() +
-          leafFront_.size() + scale_.size()) *
-           sizeof(double) +
+          leafFront_.size() + slopeLimit_.size()) *
+           sizeof(float) +
+         (scale_.size() + inScale_.size() + self_.size() + scaled_.size()) * sizeof(double) +
          (frontMoment_.size() + psi_.size() + centroid_.size() + moment_.size() +
           gradient_.size()) *
-           sizeof(Vec3) +
-         slopeLimit_.size() * sizeof(float) +
-         (sideEmit_.size() + sidePhi_.size()) * sizeof(std::array<double, 6>);
+           sizeof(Vec3f) +
+         (sideEmit_.size() + sidePhi_.size()) * sizeof(std::array<float, 6>);
 }
 
 } // namespace volrad

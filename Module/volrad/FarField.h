@@ -80,7 +80,8 @@ private:
   std::vector<double> scale_, inScale_, self_;
   /// Per node, its centroid (the gather's directions: ClusterTree::centroid
   /// finds a node's level first, at every link).
-  std::vector<Vec3> centroid_;
+  std::vector<Vec3f> centroid_;
+  Vec3 centroid(Index node) const { return centroid_[node].cast<double>(); }
   /// Voxel clusters are the nodes [voxel count, voxel count + clusters_):
   /// the arrays indexed by cluster (node - voxel count) hold them only,
   /// since leaves have no extent and patch nodes no slope.
@@ -92,19 +93,22 @@ private:
   /// Per voxel cluster: 1 / its radius, the limit of the first-order
   /// variation of a link's exchange across it.
   std::vector<float> slopeLimit_;
-  // Work arrays, per tree node (mutable: apply is logically const).
-  mutable std::vector<double> emit_, phi_, scaled_;
-  mutable std::vector<double> frontEmit_, leafDirect_, leafFront_;
-  mutable std::vector<Vec3> frontMoment_, psi_;
+  // Work arrays, per tree node (mutable: apply is logically const), in
+  // float: at 256^3 voxels the far field's arrays in double were 2.6 GB, a
+  // third of the solve's peak; every sum is taken in double.
+  mutable std::vector<double> scaled_; // per element
+  mutable std::vector<float> emit_, phi_;
+  mutable std::vector<float> frontEmit_, leafDirect_, leafFront_;
+  mutable std::vector<Vec3f> frontMoment_, psi_;
   /// With front sides: per node, what its clusters received, without the
   /// sides' transmittance (front sides' share; they emit the same way).
-  mutable std::vector<double> open_;
+  mutable std::vector<float> open_;
   /// Per voxel cluster: its elements' emission moment about its centroid
   /// (pull) and the gradient of what it received (push).
-  mutable std::vector<Vec3> moment_, gradient_;
+  mutable std::vector<Vec3f> moment_, gradient_;
   /// Per voxel cluster (node - voxel count): its emission through, and what
   /// it received on, each of its six sides (ClusterTree::side).
-  mutable std::vector<std::array<double, 6>> sideEmit_, sidePhi_;
+  mutable std::vector<std::array<float, 6>> sideEmit_, sidePhi_;
 };
 
 } // namespace volrad

@@ -16,6 +16,8 @@
 namespace volrad {
 
 using Vec3 = Eigen::Vector3d;
+/// Per-node work arrays of the far field (half the bytes; sums in double).
+using Vec3f = Eigen::Vector3f;
 using Index = std::int64_t;
 
 /// The six faces of the domain, in index directions (VTK's i, j, k).
