@@ -24,6 +24,14 @@ namespace {
 
 const std::string kOut = VOLRAD_TEST_OUTPUT_DIR;
 
+/// A file of this test's own: ctest runs this file's tests in parallel, and a
+/// shared name let one test rewrite a volume another was reading.
+std::string testFile(const std::string& name, const char* extension)
+{
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  return kOut + "/bad-" + (test ? test->name() : "none") + "-" + name + extension;
+}
+
 struct Array
 {
   std::string name;
@@ -37,7 +45,7 @@ std::string legacyVolume(const std::string& name,
                          std::array<double, 3> spacing,
                          const std::vector<Array>& arrays)
 {
-  const std::string path = kOut + "/bad-" + name + ".vtk";
+  const std::string path = testFile(name, ".vtk");
   std::ofstream f(path);
   f << "# vtk DataFile Version 3.0\n" << name << "\nASCII\nDATASET STRUCTURED_POINTS\n"
     << "DIMENSIONS " << dims[0] << " " << dims[1] << " " << dims[2] << "\nSPACING " << spacing[0]
@@ -60,7 +68,7 @@ std::string legacyVolume(const std::string& name,
 
 std::string scene(const std::string& name, const std::string& json)
 {
-  const std::string path = kOut + "/bad-" + name + ".json";
+  const std::string path = testFile(name, ".json");
   std::ofstream(path) << json;
   return path;
 }
@@ -87,7 +95,7 @@ struct Case
 
 std::string emptyVti()
 {
-  const std::string path = kOut + "/bad-empty.vti";
+  const std::string path = testFile("empty", ".vti");
   vtkNew<vtkImageData> empty;
   vtkNew<vtkXMLImageDataWriter> w;
   w->SetInputData(empty);
@@ -102,7 +110,7 @@ std::string vdbFile(const std::string& name, bool truncate)
   v.name = "density";
   v.dims = { 6, 5, 4 };
   v.values.assign(6 * 5 * 4, 0.5f);
-  const std::string path = kOut + "/bad-" + name + ".vdb";
+  const std::string path = testFile(name, ".vdb");
   volrad::writeVdbGrids(path, { v });
   if (truncate) {
     std::ifstream in(path, std::ios::binary);
@@ -185,7 +193,7 @@ const std::vector<Case>& errorCases()
     { "a missing input", [] { return kOut + "/nothere.vti"; }, "cannot read the input file" },
     { "a truncated .vti",
       [] {
-        const std::string path = kOut + "/bad-truncated.vti";
+        const std::string path = testFile("truncated", ".vti");
         std::ofstream(path) << "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"1.0\">"
                                "<ImageData WholeExtent=\"0 3 0 3 0 3\"><Piece Extent=\"0 3";
         return path;
@@ -193,7 +201,7 @@ const std::vector<Case>& errorCases()
       "cannot read" },
     { "a corrupt .vdb",
       [] {
-        const std::string path = kOut + "/bad-garbage.vdb";
+        const std::string path = testFile("garbage", ".vdb");
         std::ofstream(path, std::ios::binary) << std::string(600, '\x42');
         return path;
       },
@@ -219,7 +227,7 @@ const std::vector<Case>& errorCases()
 
 TEST(BadInput, EachCaseIsOneNamedErrorAndNoOutput)
 {
-  const std::string out = kOut + "/bad-out.vti";
+  const std::string out = testFile("out", ".vti");
   for (const Case& c : errorCases()) {
     if (std::string(c.what).find(".vdb") != std::string::npos && !volrad::vdbSupported()) {
       continue;
@@ -247,7 +255,7 @@ TEST(BadInput, UnwritableOutputsLeaveNothingBehind)
     EXPECT_NE(r.output.find("cannot write '" + out + "'"), std::string::npos) << r.output;
   }
   // A failed solve over an existing output keeps the old file whole.
-  const std::string out = kOut + "/bad-keep.vti";
+  const std::string out = testFile("keep", ".vti");
   ASSERT_EQ(volrad::test::runVolrad(goodVolume() + " -o " + out).code, 0);
   std::ifstream before(out);
   const std::string old((std::istreambuf_iterator<char>(before)), std::istreambuf_iterator<char>());
@@ -261,7 +269,7 @@ TEST(BadInput, UnwritableOutputsLeaveNothingBehind)
 
 TEST(BadInput, LightsWallsKeepOutAndMissingArraysAreWarnings)
 {
-  const std::string out = kOut + "/bad-warned.vti";
+  const std::string out = testFile("warned", ".vti");
   struct Warned
   {
     std::string scene, message;
