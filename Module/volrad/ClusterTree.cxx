@@ -101,7 +101,7 @@ void ClusterTree::buildSideTransmittance(const Scene& scene, int channel)
 {
   const int L = levels();
   const Grid& g = grids_[0];
-  exitTransmittance_.assign(std::size_t(voxelOffset_[L]) * 6, 1.0f);
+  exitTransmittance_.assign(std::size_t(voxelOffset_[L]) * 6, Eigen::half(1.0f));
   sideSigma_.assign(L, {});
   sideShift_.assign(L, {});
   // Mean transmittance straight across each cell of the level below, per axis.
@@ -163,14 +163,14 @@ void ClusterTree::buildSideTransmittance(const Scene& scene, int channel)
           }
           // Towards the side the voxel node is on: nothing in between.
           exitTransmittance_[std::size_t(node) * 6 + side(a, true)] =
-            float(own * ((o & bit) ? 1.0 : through));
+            Eigen::half(float(own * ((o & bit) ? 1.0 : through)));
           exitTransmittance_[std::size_t(node) * 6 + side(a, false)] =
-            float(own * ((o & bit) ? through : 1.0));
+            Eigen::half(float(own * ((o & bit) ? through : 1.0)));
         }
         const Vec3 kc = centroid(node);
         for (int s = 0; s < 6; ++s) {
           const double below = l == 1 ? double(voxelSigma_[kid[o]]) : sideSigma_[l - 1][kid[o]][s];
-          const double out = below * exitTransmittance_[std::size_t(node) * 6 + s];
+          const double out = below * double(toParentSide(node, s));
           sides[s] += float(out);
           // Where along the axis that light leaves from: a voxel's from
           // nearer its face the thicker it is (the mean of x in e^(-kappa x)).
@@ -406,7 +406,8 @@ int ClusterTree::gap(Index a, Index b) const
 
 std::size_t ClusterTree::bytes() const
 {
-  std::size_t b = level_.size() + (voxelSigma_.size() + exitTransmittance_.size()) * sizeof(float) +
+  std::size_t b = level_.size() + voxelSigma_.size() * sizeof(float) +
+                  exitTransmittance_.size() * sizeof(Eigen::half) +
                   sideOpen_.size() * sizeof(std::array<float, 6>);
   for (int l = 0; l < levels(); ++l) {
     b += sigma_[l].size() * sizeof(double) + centroid_[l].size() * sizeof(Vec3) +

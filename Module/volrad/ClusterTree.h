@@ -68,7 +68,7 @@ public:
   /// opacity over sigma, above 1 for thick, flat voxels).
   float toParentSide(Index n, int side) const
   {
-    return isPatch(n) ? 1.0f : exitTransmittance_[std::size_t(n) * 6 + side];
+    return isPatch(n) ? 1.0f : float(exitTransmittance_[std::size_t(n) * 6 + side]);
   }
   /// Weights of the three sides facing unit w (side(a, w_a > 0)) in what a
   /// cluster shows towards w, from the fraction of its cross-section each
@@ -153,7 +153,10 @@ private:
   std::vector<std::uint8_t> level_;
   std::vector<float> voxelSigma_;          ///< level 0
   std::vector<std::vector<double>> sigma_; ///< levels >= 1 (voxels), [0] unused
-  std::vector<float> exitTransmittance_;   ///< per voxel node, 6 sides of its parent
+  /// Per voxel node, 6 sides of its parent; in half precision (0.05%, far
+  /// below a link's error): 24 bytes a voxel in float, the tree's largest
+  /// array.
+  std::vector<Eigen::half> exitTransmittance_;
   std::vector<std::vector<std::array<float, 6>>> sideSigma_; ///< levels >= 1 (voxels)
   std::vector<std::array<float, 6>> sideOpen_; ///< per cluster node, from the first cluster on
   /// Per side, where along its axis the light leaving through it comes

@@ -390,15 +390,21 @@ Solution solveHierarchical(const Scene& scene,
   /// Channel is made in place and never moved.
   struct Channel
   {
-    Channel(int c, DirectLighting&& d, ZonalSystem&& s, const Scene& scene, const NearField& near)
+    Channel(int c, const DirectLighting& dl, ZonalSystem&& s, const Scene& scene, const NearField& near)
       : ch(c)
-      , dl(std::move(d))
+      , track(dl.track.begin(), dl.track.end())
+      , trackFront(dl.trackFront.begin(), dl.trackFront.end())
+      , entering(dl.entering)
       , sys(std::move(s))
       , op{ scene, near, Vector::Zero(sys.e.size()), nullptr }
     {
     }
     int ch;
-    DirectLighting dl;
+    /// The direct light's tracks, for the fields at the end: in float
+    /// (their doubles were 0.4 GB at 256^3 in three channels, held
+    /// through the whole solve).
+    std::vector<float> track, trackFront;
+    double entering;
     ZonalSystem sys;
     ChannelOperator op;
     Vector x0;
@@ -452,7 +458,8 @@ Solution solveHierarchical(const Scene& scene,
         setup.report(1.0);
         ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
         setup.report(1.0);
-        auto c = std::make_unique<Channel>(ch, std::move(dl), std::move(sys), scene, near);
+        auto c = std::make_unique<Channel>(ch, dl, std::move(sys), scene, near);
+        dl = DirectLighting();
         c->x0 = c->sys.e;
         for (Index e = 0; e < n; ++e) {
           const double scatter = c->sys.c[e];
@@ -582,7 +589,6 @@ Solution solveHierarchical(const Scene& scene,
         const Vector& collided = collidedOf[k];
         const std::vector<double>& farView = farViewOf[k];
         const Vector& x = c.state.x;
-        const DirectLighting& dl = c.dl;
         storeChannelFields(
           scene,
           ch,
@@ -593,7 +599,7 @@ Solution solveHierarchical(const Scene& scene,
             if (!opt.emptySpaceFields) {
               return 0.0; // not asked for (a sparse solve)
             }
-            double s = farView[v] + dl.track[v] / V;
+            double s = farView[v] + c.track[v] / V;
             for (Index k = near.viewStart[v]; k < near.viewStart[v + 1]; ++k) {
               s += near.viewValue[k] * x[near.viewColumn[k]];
             }
@@ -605,10 +611,10 @@ Solution solveHierarchical(const Scene& scene,
             if (!opt.emptySpaceFields && el.full[v] < 0) {
               return 0.0;
             }
-            return 0.5 * (sol.G[o] - dl.track[v] / V) + dl.trackFront[v] / V;
+            return 0.5 * (sol.G[o] - c.track[v] / V) + c.trackFront[v] / V;
           },
           sol);
-        sol.energy[ch] = computeEnergyTerms(scene, ch, sol, dl.entering);
+        sol.energy[ch] = computeEnergyTerms(scene, ch, sol, c.entering);
       }
     });
   }

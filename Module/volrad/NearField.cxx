@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <limits>
 #include <map>
+#include <string>
 #include <utility>
 
 namespace volrad {
@@ -46,7 +48,7 @@ std::vector<Triplet> gatherTriplets(TripletLists& lists)
 void toRows(const std::vector<Triplet>& t,
             Index rows,
             std::vector<Index>& start,
-            std::vector<std::int64_t>& column,
+            std::vector<NearField::Column>& column,
             std::vector<float>& value)
 {
   start.assign(rows + 1, 0);
@@ -54,7 +56,7 @@ void toRows(const std::vector<Triplet>& t,
   value.resize(t.size());
   for (std::size_t k = 0; k < t.size(); ++k) {
     ++start[t[k].row + 1];
-    column[k] = t[k].col;
+    column[k] = NearField::Column(t[k].col);
     value[k] = float(t[k].value);
   }
   for (Index r = 0; r < rows; ++r) {
@@ -236,9 +238,9 @@ void NearField::apply(const Grid& g, const double* x, double* y, bool skipDiagon
 std::size_t NearField::bytes() const
 {
   return stencil.size() * sizeof(float) + extraStart.size() * sizeof(Index) +
-         extraColumn.size() * (sizeof(std::int64_t) + sizeof(float)) + far.size() * sizeof(double) +
+         extraColumn.size() * (sizeof(Column) + sizeof(float)) + far.size() * sizeof(double) +
          viewStart.size() * sizeof(Index) +
-         viewColumn.size() * (sizeof(std::int64_t) + sizeof(float)) +
+         viewColumn.size() * (sizeof(Column) + sizeof(float)) +
          (elements.full.size() + elements.front.size() + elements.voxelOf.size()) * sizeof(Index);
 }
 
@@ -264,6 +266,10 @@ NearField computeNearField(const Scene& scene,
   out.elements = makeExchangeElements(scene, channel);
   const ExchangeElements& el = out.elements;
   const Index nv = g.voxelCount(), n = el.size();
+  if (n > Index(std::numeric_limits<NearField::Column>::max())) {
+    throw Error("too many elements for the near field (" + std::to_string(n) + ", at most " +
+                std::to_string(std::numeric_limits<NearField::Column>::max()) + ")");
+  }
   const int width = out.stencilSize();
   out.stencil.assign(std::size_t(el.fullCount) * width, 0.f);
 

@@ -45,6 +45,11 @@ struct NearFieldOptions
 
 struct NearField
 {
+  /// An element's number in the rows' columns: 32 bits (computeNearField
+  /// refuses more elements), a third less than 64-bit columns beside the
+  /// 32-bit values.
+  using Column = std::int32_t;
+
   int radius = 1;
   ExchangeElements elements;
   /// Full side to full side, per full side e (voxel v = elements.voxelOf[e],
@@ -57,7 +62,7 @@ struct NearField
   /// The other near pairs (a front side or a patch at one end or both), as
   /// rows over elements: row e is [extraStart[e], extraStart[e + 1]).
   std::vector<Index> extraStart;
-  std::vector<std::int64_t> extraColumn;
+  std::vector<Column> extraColumn;
   std::vector<float> extraValue;
   /// Per element: its row target less its near row over the partition
   /// (full sides and patches), >= 0: the exchange links must carry.
@@ -65,7 +70,7 @@ struct NearField
   /// View rows of voxels that are not elements (kappa_t = 0) but see
   /// elements inside their box: G = row . x over element radiosities.
   std::vector<Index> viewStart; ///< per voxel + 1
-  std::vector<std::int64_t> viewColumn;
+  std::vector<Column> viewColumn;
   std::vector<float> viewValue;
 
   static int stencilSizeFor(int r) { return (2 * r + 1) * (2 * r + 1) * (2 * r + 1); }

@@ -159,7 +159,7 @@ TEST(NearField, RowsSharedAlongTheWallsMatchTheirOwnQuadrature)
   const Grid& g = s.grid;
   const ExchangeElements& el = a.elements;
   auto rowOf = [](const std::vector<Index>& start,
-                  const std::vector<std::int64_t>& column,
+                  const std::vector<NearField::Column>& column,
                   const std::vector<float>& value,
                   Index r) {
     std::map<std::int64_t, double> row;
