@@ -242,6 +242,10 @@ void krylov(const ChannelOperator& op,
     return reduceSum(a.size(), [&](Index i) { return a[i] * b[i]; });
   };
   report.usedKrylov = true;
+  // Vectors of elements are the iterations' memory (8 bytes an element:
+  // 134 MB or more at 256^3): dx is remade at the end, and s = r - alpha v
+  // is made in r's place.
+  s.dx = Vector();
   Vector r = x0 - A(s.x);
   const Vector r0 = r;
   Vector p = Vector::Zero(r.size()), v = Vector::Zero(r.size());
@@ -262,18 +266,17 @@ void krylov(const ChannelOperator& op,
     p = r + beta * (p - omega * v);
     v = A(p);
     alpha = rho1 / dot(r0, v);
-    const Vector sv = r - alpha * v;
+    r -= alpha * v; // s
     s.iterations += 1;
-    if (s.change(sv) <= epsilon) {
+    if (s.change(r) <= epsilon) {
       s.x += alpha * p;
-      r = sv;
       continue;
     }
-    const Vector t = A(sv);
+    const Vector t = A(r);
     const double tt = dot(t, t);
-    omega = tt > 0.0 ? dot(t, sv) / tt : 0.0;
-    s.x += alpha * p + omega * sv;
-    r = sv - omega * t;
+    omega = tt > 0.0 ? dot(t, r) / tt : 0.0;
+    s.x += alpha * p + omega * r;
+    r -= omega * t;
     rho = rho1;
     s.iterations += 1;
     if (omega == 0.0) {
