@@ -462,7 +462,6 @@ Solution solveHierarchical(const Scene& scene,
         ZonalSystem sys = buildZonalSystem(scene, ch, el, dl);
         setup.report(1.0);
         auto c = std::make_unique<Channel>(ch, dl, std::move(sys), scene, near);
-        dl = DirectLighting();
         c->x0 = c->sys.e;
         for (Index e = 0; e < n; ++e) {
           const double scatter = c->sys.c[e];
