@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <deque>
 #include <limits>
@@ -409,6 +410,50 @@ void forEachInParts(const std::vector<ChunkedList<T>*>& parts, const ProgressRan
     });
 }
 
+/// f(item, part) for every item of `parts`, the parts in parallel (each by
+/// one task at a time, in its order), in blocks between progress reports,
+/// each block shared among the parts by what each has left: so f may run
+/// for two parts at once. Draining as forEachInParts.
+template<bool Drain, class T, class F>
+void forEachInPartsInParallel(const std::vector<ChunkedList<T>*>& parts,
+                              const ProgressRange& range,
+                              F&& f)
+{
+  const std::size_t P = parts.size();
+  std::vector<std::int64_t> size(P), done(P, 0), take(P);
+  std::int64_t total = 0;
+  for (std::size_t p = 0; p < P; ++p) {
+    size[p] = std::int64_t(parts[p]->size());
+    total += size[p];
+  }
+  range.forBlocks(
+    total, std::int64_t(1) << 16, std::int64_t(1) << 22, [&](std::int64_t k0, std::int64_t k1) {
+      const std::int64_t want = k1 - k0, left = total - k0;
+      std::int64_t given = 0;
+      for (std::size_t p = 0; p < P; ++p) {
+        take[p] = want * (size[p] - done[p]) / left;
+        given += take[p];
+      }
+      for (std::size_t p = 0; p < P && given < want; ++p) {
+        const std::int64_t extra = std::min(size[p] - done[p] - take[p], want - given);
+        take[p] += extra;
+        given += extra;
+      }
+      tbb::parallel_for(std::size_t(0), P, [&](std::size_t p) {
+        ChunkedList<T>& l = *parts[p];
+        for (std::int64_t i = 0; i < take[p]; ++i) {
+          if (Drain) {
+            f(l[0], p);
+            l.pop_front();
+          } else {
+            f(l[std::size_t(done[p] + i)], p);
+          }
+        }
+        done[p] += take[p];
+      });
+    });
+}
+
 /// Hands the heap's free pages back to the system (glibc keeps them).
 void releaseFreedMemory()
 {
@@ -684,50 +729,78 @@ LinkSet refineLinks(const ClusterTree& tree,
   });
   LinkSet out;
   out.pairsPerLevel.assign(tree.levels(), 0);
-  out.start.assign(tree.size() + 1, 0);
-  float largest = 0.f;
+  // Rows' lengths, counted by the threads at once (relaxed atomic counts,
+  // which become the rows' write cursors below).
+  std::vector<std::atomic<Index>> cursor(std::size_t(tree.size()));
+  struct Tally
+  {
+    float largest = 0.f;
+    long long pairs = 0;
+    std::vector<long long> perLevel;
+  };
+  std::vector<Tally> tallies(slices.empty() ? 0 : slices[0].size());
+  for (auto& t : tallies) {
+    t.perLevel.assign(tree.levels(), 0);
+  }
   for (int j = 0; j < S; ++j) {
     const double p0 = 0.9 + 0.02 * j / S, p1 = 0.9 + 0.02 * (j + 1) / S;
-    forEachInParts<false>(slices[j], progress.sub(p0, p1), [&](const PackedLink& x) {
-      const Index a = packing.row(x, j), b = packing.other(x);
-      largest = std::max(largest, packing.gamma(x));
-      ++out.pairs;
-      ++out.pairsPerLevel[std::min(tree.level(a), tree.level(b))];
-      ++out.start[a + 1];
-      ++out.start[b + 1];
-    });
+    forEachInPartsInParallel<false>(
+      slices[j], progress.sub(p0, p1), [&](const PackedLink& x, std::size_t part) {
+        const Index a = packing.row(x, j), b = packing.other(x);
+        Tally& t = tallies[part];
+        t.largest = std::max(t.largest, packing.gamma(x));
+        ++t.pairs;
+        ++t.perLevel[std::min(tree.level(a), tree.level(b))];
+        cursor[a].fetch_add(1, std::memory_order_relaxed);
+        cursor[b].fetch_add(1, std::memory_order_relaxed);
+      });
   }
+  float largest = 0.f;
+  for (const Tally& t : tallies) {
+    largest = std::max(largest, t.largest);
+    out.pairs += t.pairs;
+    for (int l = 0; l < tree.levels(); ++l) {
+      out.pairsPerLevel[l] += t.perLevel[l];
+    }
+  }
+  out.start.assign(tree.size() + 1, 0);
   for (Index n = 0; n < tree.size(); ++n) {
-    out.start[n + 1] += out.start[n];
+    out.start[n + 1] = out.start[n] + cursor[n].load(std::memory_order_relaxed);
+    cursor[n].store(out.start[n], std::memory_order_relaxed);
   }
   out.code = GammaCode::forLargest(largest);
   // The rows are written one slice of nodes at a time, from the links whose
   // lower end is in the slice, which are freed as they go; the direction
   // into a later slice waits in that slice's pending list. Freed pages go
   // back to the system, so that the accepted links and the rows are not all
-  // resident at once. A slice's rows are filled in full 32-bit form, each
-  // ordered by source (so that the order does not depend on the threads),
-  // then stored as steps (LinkSet) in the final arrays, whose pages are
-  // faulted in only where written.
+  // resident at once. A slice's rows are filled in full 32-bit form (by the
+  // threads at once, each thread's links in turn), each then ordered by
+  // source (so that the order does not depend on the threads), and stored
+  // as steps (LinkSet) in the final arrays, whose pages are faulted in only
+  // where written.
   const Index total = out.start.back();
   out.step.resize(total);
   out.gamma.resize(total);
   out.farStart.assign(tree.size() + 1, 0);
   std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> rawSource;
   std::vector<float, UninitialisedAllocator<float>> rawGamma;
-  std::vector<Index> cursor(out.start.begin(), out.start.end() - 1);
   Index sliceBegin = 0; // the current slice's first entry
-  std::int64_t written = 0;
+  std::atomic<std::int64_t> written{ 0 };
   auto write = [&](Index into, Index from, float gamma) {
-    const Index k = cursor[into]++ - sliceBegin;
+    const Index k = cursor[into].fetch_add(1, std::memory_order_relaxed) - sliceBegin;
     rawSource[k] = std::int32_t(from);
     rawGamma[k] = gamma;
-    if (++written % (std::int64_t(1) << 19) == 0) {
+    if ((written.fetch_add(1, std::memory_order_relaxed) + 1) % (std::int64_t(1) << 19) == 0) {
       releaseFreedMemory();
     }
   };
   tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
-  Sliced<PackedLink> pending(static_cast<std::size_t>(S)); // by receiver: (receiver, source, gamma)
+  // By receiver's slice, per part (thread) of the accepted links: (receiver, source, gamma).
+  std::vector<Sliced<PackedLink>> pending(tallies.size());
+  for (auto& p : pending) {
+    p = Sliced<PackedLink>(std::size_t(S));
+  }
+  std::vector<std::uint32_t> farSteps; // per node of the slice
   for (int j = 0; j < S; ++j) {
     const Index n0 = std::min(tree.size(), j * sliceSize),
                 n1 = std::min(tree.size(), (j + 1) * sliceSize);
@@ -738,31 +811,36 @@ LinkSet refineLinks(const ClusterTree& tree,
     rawGamma.resize(out.start[n1] - sliceBegin);
     const double p0 = 0.92 + 0.08 * j / S, p1 = 0.92 + 0.08 * (j + 1) / S;
     const double q1 = p0 + 0.4 * (p1 - p0), q2 = p0 + 0.6 * (p1 - p0);
-    forEachInParts<true>(slices[j], progress.sub(p0, q1), [&](const PackedLink& x) {
-      const Index a = packing.row(x, j), b = packing.other(x);
-      const float gamma = packing.gamma(x);
-      write(a, b, gamma);
-      const int later = packing.sliceOf(b);
-      if (later == j) {
-        write(b, a, gamma);
-      } else {
-        pending[later].push_back(packing.pack(b, later, a, gamma));
-      }
-    });
-    forEachInParts<true>(std::vector<ChunkedList<PackedLink>*>{ &pending[j] },
-                         progress.sub(q1, q2),
-                         [&](const PackedLink& x) {
-                           write(packing.row(x, j), packing.other(x), packing.gamma(x));
-                         });
+    forEachInPartsInParallel<true>(
+      slices[j], progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
+        const Index a = packing.row(x, j), b = packing.other(x);
+        const float gamma = packing.gamma(x);
+        write(a, b, gamma);
+        const int later = packing.sliceOf(b);
+        if (later == j) {
+          write(b, a, gamma);
+        } else {
+          pending[part][later].push_back(packing.pack(b, later, a, gamma));
+        }
+      });
+    std::vector<ChunkedList<PackedLink>*> waiting;
+    for (auto& p : pending) {
+      waiting.push_back(&p[j]);
+    }
+    forEachInPartsInParallel<true>(
+      waiting, progress.sub(q1, q2), [&](const PackedLink& x, std::size_t) {
+        write(packing.row(x, j), packing.other(x), packing.gamma(x));
+      });
     // The rows are uninitialised until written: every one must be full.
     for (Index n = n0; n < n1; ++n) {
-      if (cursor[n] != out.start[n + 1]) {
+      if (cursor[n].load(std::memory_order_relaxed) != out.start[n + 1]) {
         throw Error("link refinement: node " + std::to_string(n) + "'s row was not filled");
       }
     }
+    farSteps.assign(std::size_t(n1 - n0), 0);
     const ProgressRange sortRange = progress.sub(q2, p1);
     sortRange.forBlocks(n1 - n0, 256, 4096, [&](std::int64_t b0, std::int64_t b1) {
-      tbb::parallel_for(tbb::blocked_range<Index>(n0 + b0, n0 + b1, 256), [&](const auto& r) {
+      tbb::parallel_for(tbb::blocked_range<Index>(n0 + b0, n0 + b1, 8), [&](const auto& r) {
         auto& links = scratch.local();
         for (Index b = r.begin(); b != r.end(); ++b) {
           const Index k0 = out.start[b] - sliceBegin, k1 = out.start[b + 1] - sliceBegin;
@@ -771,37 +849,42 @@ LinkSet refineLinks(const ClusterTree& tree,
             links.emplace_back(rawSource[k], rawGamma[k]);
           }
           std::sort(links.begin(), links.end());
+          std::int64_t previous = -1;
           for (Index k = k0; k < k1; ++k) {
-            rawSource[k] = links[k - k0].first;
-            rawGamma[k] = links[k - k0].second;
+            const std::int32_t a = links[k - k0].first;
+            rawSource[k] = a;
+            const std::int64_t d = std::int64_t(a) - previous;
+            if (d < LinkSet::kFarStep) {
+              out.step[sliceBegin + k] = std::uint16_t(d);
+            } else {
+              out.step[sliceBegin + k] = LinkSet::kFarStep;
+              ++farSteps[b - n0];
+            }
+            out.gamma[sliceBegin + k] = out.code.encode(links[k - k0].second);
+            previous = a;
           }
         }
       });
     });
+    // Far steps' sources, in order (few: one pass over the rows that have them).
     for (Index b = n0; b < n1; ++b) {
       if (out.farSource.size() > std::numeric_limits<std::uint32_t>::max()) {
         throw Error("link refinement: too many far steps for 32-bit row offsets");
       }
       out.farStart[b] = std::uint32_t(out.farSource.size());
-      std::int64_t previous = -1;
-      for (Index k = out.start[b]; k < out.start[b + 1]; ++k) {
-        const std::int32_t a = rawSource[k - sliceBegin];
-        const std::int64_t d = std::int64_t(a) - previous;
-        if (d < LinkSet::kFarStep) {
-          out.step[k] = std::uint16_t(d);
-        } else {
-          out.step[k] = LinkSet::kFarStep;
-          out.farSource.push_back(a);
+      if (farSteps[b - n0] > 0) {
+        for (Index k = out.start[b]; k < out.start[b + 1]; ++k) {
+          if (out.step[k] == LinkSet::kFarStep) {
+            out.farSource.push_back(rawSource[k - sliceBegin]);
+          }
         }
-        out.gamma[k] = out.code.encode(rawGamma[k - sliceBegin]);
-        previous = a;
       }
     }
   }
   out.farStart[tree.size()] = std::uint32_t(out.farSource.size());
   out.farSource.shrink_to_fit();
   accepted.clear();
-  std::vector<Index>().swap(cursor);
+  std::vector<std::atomic<Index>>().swap(cursor);
   decltype(rawSource)().swap(rawSource);
   decltype(rawGamma)().swap(rawGamma);
   releaseFreedMemory();
