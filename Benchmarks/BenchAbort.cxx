@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -46,17 +47,39 @@ int main(int argc, char** argv)
       threads = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--gaps")) {
       gaps = true;
-    } else if (!haveN) {
-      n = std::atoi(argv[i]);
-      haveN = true;
+    } else if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+      std::printf("usage: BenchAbort [--scene phantom|cloud|cube] [--method M] [--threads N]\n"
+                  "         [--gaps] [SIZE [DELAY_SECONDS ...]]\n");
+      return 0;
     } else {
-      delays.push_back(std::atof(argv[i]));
+      char* end = nullptr;
+      const double x = std::strtod(argv[i], &end);
+      const bool size = !haveN;
+      if (end == argv[i] || *end || !(x > 0.0) || (size && (x != std::floor(x) || x > 4096))) {
+        std::fprintf(stderr,
+                     "BenchAbort: not an option or a %s: %s (--help lists the options)\n",
+                     size ? "grid size (1-4096)" : "delay in seconds (> 0)",
+                     argv[i]);
+        return 2;
+      }
+      if (size) {
+        n = int(x);
+        haveN = true;
+      } else {
+        delays.push_back(x);
+      }
     }
   }
   if (delays.empty()) {
     delays = { 0.5, 1, 2, 4, 8, 16, 32, 64 };
   }
-  const Scene scene = bench::benchmarkScene(sceneName, n);
+  Scene scene;
+  try {
+    scene = bench::benchmarkScene(sceneName, n);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "BenchAbort: %s\n", e.what());
+    return 2;
+  }
   if (gaps) {
     struct Gap
     {

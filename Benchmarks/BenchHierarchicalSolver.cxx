@@ -139,12 +139,34 @@ int main(int argc, char* argv[])
       options.memoryLimitBytes = std::atof(argv[++i]) * double(1 << 30);
     } else if (std::strcmp(argv[i], "--mc") == 0) {
       mc = true;
+    } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      std::printf("usage: BenchHierarchicalSolver [--scenes phantom,cloud,cube] [--epsilon E]\n"
+                  "         [--link-tolerance T] [--threads N] [--memory-budget GiB] [--mc]\n"
+                  "         [SIZE ...]   (grid sizes n for n^3 voxels; default 32 64 128 256)\n");
+      return 0;
     } else {
-      sizes.push_back(std::atoi(argv[i]));
+      char* end = nullptr;
+      const long n = std::strtol(argv[i], &end, 10);
+      if (end == argv[i] || *end || n < 1 || n > 4096) {
+        std::fprintf(stderr,
+                     "BenchHierarchicalSolver: not an option or a grid size (1-4096): %s "
+                     "(--help lists the options)\n",
+                     argv[i]);
+        return 2;
+      }
+      sizes.push_back(int(n));
     }
   }
   if (sizes.empty()) {
     sizes = { 32, 64, 128, 256 };
+  }
+  for (const std::string& name : scenes) {
+    try {
+      bench::benchmarkScene(name, 1);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "BenchHierarchicalSolver: %s\n", e.what());
+      return 2;
+    }
   }
   std::printf("%-8s %5s %8s %8s %8s %8s %9s %10s %10s %6s %10s %9s\n",
               "scene",

@@ -9,6 +9,7 @@
 //      isotropic point light at its centre.
 #pragma once
 
+#include "volrad/Error.h"
 #include "volrad/Normals.h"
 #include "volrad/Scene.h"
 
@@ -88,9 +89,20 @@ inline Scene cubeScene61(int n)
   return s;
 }
 
+/// The benchmark scene of that name; any other name is an error (not a
+/// cube measured under the wrong name).
 inline Scene benchmarkScene(const std::string& name, int n)
 {
-  return name == "phantom" ? phantomScene(n) : (name == "cloud" ? cloudScene(n) : cubeScene61(n));
+  if (name == "phantom") {
+    return phantomScene(n);
+  }
+  if (name == "cloud") {
+    return cloudScene(n);
+  }
+  if (name == "cube") {
+    return cubeScene61(n);
+  }
+  throw Error("no benchmark scene '" + name + "' (phantom, cloud or cube)");
 }
 
 } // namespace volrad::bench
