@@ -139,6 +139,10 @@ double meanSpread(const ClusterTree& t, Index a, Index b, const Vec3& w, double 
     for (int j = 0; j < nb; ++j) {
       const Vec3 d = point(cb, hb, j) - p;
       const double l2 = d.squaredNorm(), along = std::abs(d.dot(axis));
+      if (depth == 0.0) {
+        sum += 1.0 / l2; // nothing between (air around a scan): no exp to take
+        continue;
+      }
       // An oblique line crosses the medium between for 1/cos longer.
       const double stretch = along > 0.0 ? std::sqrt(l2) / along : 1.0;
       sum += std::exp(-std::min(depth * (stretch - 1.0), kMaxLogGain)) / l2;
