@@ -55,7 +55,8 @@ int main(int argc, char** argv)
       char* end = nullptr;
       const double x = std::strtod(argv[i], &end);
       const bool size = !haveN;
-      if (end == argv[i] || *end || !(x > 0.0) || (size && (x != std::floor(x) || x > 4096))) {
+      if (end == argv[i] || *end || !(x > 0.0) || !std::isfinite(x) ||
+          (size && (x != std::floor(x) || x > 4096))) {
         std::fprintf(stderr,
                      "BenchAbort: not an option or a %s: %s (--help lists the options)\n",
                      size ? "grid size (1-4096)" : "delay in seconds (> 0)",

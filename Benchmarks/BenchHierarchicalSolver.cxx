@@ -122,6 +122,16 @@ int main(int argc, char* argv[])
   std::vector<std::string> scenes = { "phantom", "cloud", "cube" };
   bool mc = false;
   HierarchicalOptions options;
+  bool bad = false;
+  auto number = [&](const char* option, const char* text) {
+    char* end = nullptr;
+    const double x = std::strtod(text, &end);
+    if (end == text || *end || !std::isfinite(x)) {
+      std::fprintf(stderr, "BenchHierarchicalSolver: %s needs a number, not '%s'\n", option, text);
+      bad = true;
+    }
+    return x;
+  };
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--scenes") == 0 && i + 1 < argc) {
       scenes.clear();
@@ -130,13 +140,18 @@ int main(int argc, char* argv[])
         scenes.push_back(item);
       }
     } else if (std::strcmp(argv[i], "--epsilon") == 0 && i + 1 < argc) {
-      options.epsilon = std::atof(argv[++i]);
+      options.epsilon = number("--epsilon", argv[++i]);
     } else if (std::strcmp(argv[i], "--link-tolerance") == 0 && i + 1 < argc) {
-      options.linkTolerance = std::atof(argv[++i]);
+      options.linkTolerance = number("--link-tolerance", argv[++i]);
     } else if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
-      options.threads = std::atoi(argv[++i]);
+      const double t = number("--threads", argv[++i]);
+      if (!bad && (t < 0.0 || t != std::floor(t) || t > 4096)) {
+        std::fprintf(stderr, "BenchHierarchicalSolver: --threads needs a count (0: all cores)\n");
+        bad = true;
+      }
+      options.threads = bad ? 0 : int(t);
     } else if (std::strcmp(argv[i], "--memory-budget") == 0 && i + 1 < argc) {
-      options.memoryLimitBytes = std::atof(argv[++i]) * double(1 << 30);
+      options.memoryLimitBytes = number("--memory-budget", argv[++i]) * double(1 << 30);
     } else if (std::strcmp(argv[i], "--mc") == 0) {
       mc = true;
     } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
@@ -156,6 +171,9 @@ int main(int argc, char* argv[])
       }
       sizes.push_back(int(n));
     }
+  }
+  if (bad) {
+    return 2;
   }
   if (sizes.empty()) {
     sizes = { 32, 64, 128, 256 };
