@@ -51,24 +51,23 @@ int main(int argc, char** argv)
       std::printf("usage: BenchAbort [--scene phantom|cloud|cube] [--method M] [--threads N]\n"
                   "         [--gaps] [SIZE [DELAY_SECONDS ...]]\n");
       return 0;
+    } else if (!haveN) {
+      n = bench::gridSize("BenchAbort", argv[i]);
+      if (n == 0) {
+        return 2;
+      }
+      haveN = true;
     } else {
       char* end = nullptr;
       const double x = std::strtod(argv[i], &end);
-      const bool size = !haveN;
-      if (end == argv[i] || *end || !(x > 0.0) || !std::isfinite(x) ||
-          (size && (x != std::floor(x) || x > 4096))) {
+      if (end == argv[i] || *end || !(x > 0.0) || !std::isfinite(x)) {
         std::fprintf(stderr,
-                     "BenchAbort: not an option or a %s: %s (--help lists the options)\n",
-                     size ? "grid size (1-4096)" : "delay in seconds (> 0)",
+                     "BenchAbort: not an option or a delay in seconds (> 0): %s (--help lists "
+                     "the options)\n",
                      argv[i]);
         return 2;
       }
-      if (size) {
-        n = int(x);
-        haveN = true;
-      } else {
-        delays.push_back(x);
-      }
+      delays.push_back(x);
     }
   }
   if (delays.empty()) {

@@ -160,16 +160,11 @@ int main(int argc, char* argv[])
                   "         [SIZE ...]   (grid sizes n for n^3 voxels; default 32 64 128 256)\n");
       return 0;
     } else {
-      char* end = nullptr;
-      const long n = std::strtol(argv[i], &end, 10);
-      if (end == argv[i] || *end || n < 1 || n > 4096) {
-        std::fprintf(stderr,
-                     "BenchHierarchicalSolver: not an option or a grid size (1-4096): %s "
-                     "(--help lists the options)\n",
-                     argv[i]);
+      const int n = bench::gridSize("BenchHierarchicalSolver", argv[i]);
+      if (n == 0) {
         return 2;
       }
-      sizes.push_back(int(n));
+      sizes.push_back(n);
     }
   }
   if (bad) {

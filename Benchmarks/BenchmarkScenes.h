@@ -14,6 +14,8 @@
 #include "volrad/Scene.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace volrad::bench {
@@ -87,6 +89,22 @@ inline Scene cubeScene61(int n)
   }
   s.pointLights.push_back({ Vec3::Constant(0.5), uniformChannels(1.0) });
   return s;
+}
+
+/// A grid size read from `program`'s command line (n for n^3 voxels,
+/// 1-4096), or 0, said on stderr, when the text is not one.
+inline int gridSize(const char* program, const char* text)
+{
+  char* end = nullptr;
+  const long n = std::strtol(text, &end, 10);
+  if (end != text && *end == '\0' && n >= 1 && n <= 4096) {
+    return int(n);
+  }
+  std::fprintf(stderr,
+               "%s: not an option or a grid size (1-4096): %s (--help lists the options)\n",
+               program,
+               text);
+  return 0;
 }
 
 /// The benchmark scene of that name; any other name is an error (not a

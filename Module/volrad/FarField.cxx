@@ -320,23 +320,16 @@ void FarField::gather(const double* x,
     // grids, where 2048-node chunks left a block one or two tasks (the
     // phantom's iterations at 32^3 kept 1.25 of 2 cores busy).
     const std::int64_t parts = std::max<std::int64_t>(1, (k1 - k0) / kLinksPerTask);
-    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, parts, 1), [&](const auto& r) {
-      for (std::int64_t p = r.begin(); p != r.end(); ++p) {
-        auto nodeAt = [&](std::int64_t i) {
-          if (i == 0) {
-            return b0;
-          }
-          if (i == parts) {
-            return b1;
-          }
-          const Index at = std::lower_bound(start.begin() + b0, start.begin() + b1,
-                                            Index(k0 + (k1 - k0) * i / parts)) -
-                           start.begin();
-          return std::min(at, b1);
-        };
-        for (Index b = nodeAt(p), end = nodeAt(p + 1); b < end; ++b) {
-          gatherInto(b);
-        }
+    std::vector<Index> first(std::size_t(parts) + 1, b1); // each task's first node
+    first[0] = b0;
+    for (std::int64_t i = 1; i < parts; ++i) {
+      first[i] = std::lower_bound(start.begin() + b0, start.begin() + b1,
+                                  Index(k0 + (k1 - k0) * i / parts)) -
+                 start.begin();
+    }
+    tbb::parallel_for(std::int64_t(0), parts, [&](std::int64_t p) {
+      for (Index b = first[p]; b < first[p + 1]; ++b) {
+        gatherInto(b);
       }
     });
   });

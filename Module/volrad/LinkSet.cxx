@@ -742,7 +742,7 @@ LinkSet refineLinks(const ClusterTree& tree,
     long long pairs = 0;
     std::vector<long long> perLevel;
   };
-  std::vector<Tally> tallies(slices.empty() ? 0 : slices[0].size());
+  std::vector<Tally> tallies(slices[0].size()); // one per thread that accepted links
   for (auto& t : tallies) {
     t.perLevel.assign(tree.levels(), 0);
   }

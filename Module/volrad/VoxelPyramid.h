@@ -54,6 +54,10 @@ public:
   Depth opticalDepthAdaptive(const Vec3& a, const Vec3& b, double tolerance) const;
 
 private:
+  /// The march's decision on one cell of `level` crossed for length l:
+  /// true when it is settled there (empty, voxels, or bounds within the
+  /// per-length tolerance; added to out), false when it is walked finer.
+  bool settleCell(int level, Index cell, double l, double tolerancePerLength, Depth& out) const;
   void march(int level,
              const Vec3& o,
              const Vec3& d,
