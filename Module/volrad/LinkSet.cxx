@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "volrad/LinkSet.h"
 
+#include "volrad/LatticeLines.h"
 #include "volrad/Error.h"
 #include "volrad/Sampling.h"
 
@@ -207,17 +208,45 @@ struct SpreadCorrection
   }
 };
 
+/// Half the distance between 2-point Gauss-Legendre points, per unit width.
+const double kGaussHalf = 0.5 / std::sqrt(3.0);
+
+/// Gauss point k (of 8) of a voxel of spacing h, from its centre.
+Vec3 gaussShift(const Vec3& h, int k)
+{
+  const double q = kGaussHalf;
+  return Vec3((k & 1 ? q : -q) * h[0], (k & 2 ? q : -q) * h[1], (k & 4 ? q : -q) * h[2]);
+}
+
+/// The lines of closeLeafGamma, as LatticeLines' shifts: from each of a
+/// voxel's Gauss points to the same point of the other voxel, then between
+/// the centres.
+constexpr int kCentreLine = 8;
+std::vector<Vec3> closeLineShifts(const Vec3& h)
+{
+  std::vector<Vec3> s;
+  for (int k = 0; k < 8; ++k) {
+    s.push_back(gaussShift(h, k));
+  }
+  s.push_back(Vec3::Zero());
+  return s;
+}
+
+/// Voxel links up to this many voxels apart along each axis take their
+/// centre line's optical depth from LatticeLines, exact, instead of an
+/// adaptive march (most voxel links are fewer than 16 voxels apart: past
+/// that their parents are linked).
+constexpr int kLatticeLineReach = 16;
+
 /// 2-point Gauss-Legendre points of a leaf: 8 in a voxel, 4 on a patch.
 int leafPoints(const ClusterTree& t, Index n, std::array<Vec3, 8>& out)
 {
   const Grid& g = t.grid(0);
-  const double q = 0.5 / std::sqrt(3.0);
+  const double q = kGaussHalf;
   const Vec3 c = t.centroid(n);
   if (!t.isPatch(n)) {
     for (int k = 0; k < 8; ++k) {
-      out[k] = c + Vec3((k & 1 ? q : -q) * g.spacing[0],
-                        (k & 2 ? q : -q) * g.spacing[1],
-                        (k & 4 ? q : -q) * g.spacing[2]);
+      out[k] = c + gaussShift(g.spacing, k);
     }
     return 8;
   }
@@ -269,24 +298,29 @@ bool homogeneousBetween(const VoxelPyramid& p,
 /// integrate cosines, 1/r^2 and transmittance over the Gauss points of both
 /// ends, per unit of the centroids' cosines the gathering applies. Lines are
 /// marched whole, each voxel end's factor (logLeafFactor) included.
-double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
+double closeLeafGamma(const ClusterTree& t,
+                      const LatticeLines& lines,
+                      Index a,
+                      Index b,
+                      double spread)
 {
-  std::array<Vec3, 8> pa, pb;
-  const int na = leafPoints(t, a, pa), nb = leafPoints(t, b, pb);
   const Vec3 ca = t.centroid(a), cb = t.centroid(b);
   const double rc = (cb - ca).norm();
   const VoxelPyramid& pyramid = t.pyramid();
   if (!t.isPatch(a) && !t.isPatch(b)) {
     const Vec3 w = (cb - ca) / rc;
     const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
-    if (homogeneousBetween(pyramid, t.grid(0).ijk(a), t.grid(0).ijk(b))) {
+    const auto ia = t.grid(0).ijk(a), ib = t.grid(0).ijk(b);
+    const int di = ib[0] - ia[0], dj = ib[1] - ia[1], dk = ib[2] - ia[2];
+    const auto kappa = [&](Index v) { return pyramid.meanKappaT(0, v); };
+    if (homogeneousBetween(pyramid, ia, ib)) {
       // Every parallel line crosses the same medium: one is enough.
-      const double depth = pyramid.opticalDepth(ca, cb, 0).estimate;
+      const double depth = lines.depth(kappa, a, di, dj, dk, kCentreLine);
       return spread * std::exp(std::min(ends - depth, kMaxLogGain)) / (kPi * rc * rc);
     }
     double depth[8], least = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 8; ++k) {
-      depth[k] = pyramid.opticalDepth(pa[k], pb[k], 0).estimate;
+      depth[k] = lines.depth(kappa, a, di, dj, dk, k);
       least = std::min(least, depth[k]);
     }
     double tau = 0.0;
@@ -295,6 +329,8 @@ double closeLeafGamma(const ClusterTree& t, Index a, Index b, double spread)
     }
     return spread * std::exp(std::min(ends - least, kMaxLogGain)) * tau / (8.0 * kPi * rc * rc);
   }
+  std::array<Vec3, 8> pa, pb;
+  const int na = leafPoints(t, a, pa), nb = leafPoints(t, b, pb);
   auto cosine = [&](Index n, const Vec3& w) {
     return t.isPatch(n) ? faceInwardNormal(t.face(n)).dot(w) : 1.0;
   };
@@ -518,7 +554,11 @@ std::uint16_t GammaCode::encode(double gamma) const
   return std::uint16_t((std::uint64_t(e) << 10) | ((bits >> 42) & 0x3ffu));
 }
 
-double linkGamma(const ClusterTree& tree, Index a, Index b, double depthTolerance)
+double linkGamma(const ClusterTree& tree,
+                 Index a,
+                 Index b,
+                 double depthTolerance,
+                 const LatticeLines* centreLines)
 {
   const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
   const Vec3 ab = cb - ca;
@@ -532,7 +572,14 @@ double linkGamma(const ClusterTree& tree, Index a, Index b, double depthToleranc
   const double t0 = tree.isLeaf(a) ? 0.0 : frontPlane(tree, a, ca, w);
   const double t1 = r - (tree.isLeaf(b) ? 0.0 : frontPlane(tree, b, cb, -w));
   double depth = 0.0;
-  if (t1 > t0) {
+  const bool voxels = tree.isLeaf(a) && tree.isLeaf(b) && !tree.isPatch(a) && !tree.isPatch(b);
+  const auto ia = tree.grid(0).ijk(voxels ? a : 0), ib = tree.grid(0).ijk(voxels ? b : 0);
+  if (voxels && centreLines && centreLines->covers(ib[0] - ia[0], ib[1] - ia[1], ib[2] - ia[2])) {
+    // Two voxels: the exact depth between their centres.
+    const VoxelPyramid& p = tree.pyramid();
+    depth = centreLines->depth(
+      [&](Index v) { return p.meanKappaT(0, v); }, a, ib[0] - ia[0], ib[1] - ia[1], ib[2] - ia[2], 0);
+  } else if (t1 > t0) {
     depth = tree.pyramid().opticalDepthAdaptive(ca + t0 * w, ca + t1 * w, depthTolerance).estimate;
   }
   const double ends = (tree.isLeaf(a) ? logLeafFactor(tree, a, w) : 0.0) +
@@ -576,6 +623,8 @@ LinkSet refineLinks(const ClusterTree& tree,
   }
   const double budget = opt.tolerance * opt.powerScale;
   const SpreadCorrection spread(tree.grid(0).spacing);
+  const LatticeLines lines(tree.grid(0), kCorrectedReach + 1, closeLineShifts(tree.grid(0).spacing));
+  const LatticeLines centreLines(tree.grid(0), kLatticeLineReach, { Vec3::Zero() });
   const LinkPacking packing(tree.size());
   tbb::combinable<Sliced<PackedLink>> accepted(
     [&] { return Sliced<PackedLink>(std::size_t(packing.slices)); });
@@ -627,10 +676,11 @@ LinkSet refineLinks(const ClusterTree& tree,
                 gamma = gap <= kCorrectedReach + 1
                           ? closeLeafGamma(
                               tree,
+                              lines,
                               a,
                               b,
                               pa || pb ? 1.0 : spread(tree.grid(0).ijk(a), tree.grid(0).ijk(b)))
-                          : linkGamma(tree, a, b, opt.depthTolerance);
+                          : linkGamma(tree, a, b, opt.depthTolerance, &centreLines);
               } else {
                 const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
                 const double r = (cb - ca).norm();
@@ -736,7 +786,9 @@ LinkSet refineLinks(const ClusterTree& tree,
   // Rows' lengths, counted by the threads at once (relaxed atomic counts,
   // which become the rows' write cursors below).
   std::vector<std::atomic<Index>> cursor(std::size_t(tree.size()));
-  struct Tally
+  // One cache line each: the threads update theirs at every link, and two
+  // tallies sharing a line made the counting bounce it between the cores.
+  struct alignas(64) Tally
   {
     float largest = 0.f;
     long long pairs = 0;
@@ -789,12 +841,18 @@ LinkSet refineLinks(const ClusterTree& tree,
   std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> rawSource;
   std::vector<float, UninitialisedAllocator<float>> rawGamma;
   Index sliceBegin = 0; // the current slice's first entry
-  std::atomic<std::int64_t> written{ 0 };
-  auto write = [&](Index into, Index from, float gamma) {
+  // Per part (thread) of the accepted links, in a cache line of its own: a
+  // count shared by the threads was an atomic on one line at every entry.
+  struct alignas(64) Written
+  {
+    std::int64_t entries = 0;
+  };
+  std::vector<Written> written(tallies.size());
+  auto write = [&](Index into, Index from, float gamma, std::size_t part) {
     const Index k = cursor[into].fetch_add(1, std::memory_order_relaxed) - sliceBegin;
     rawSource[k] = std::int32_t(from);
     rawGamma[k] = gamma;
-    if ((written.fetch_add(1, std::memory_order_relaxed) + 1) % (std::int64_t(1) << 19) == 0) {
+    if (++written[part].entries % (std::int64_t(1) << 18) == 0) {
       releaseFreedMemory();
     }
   };
@@ -819,10 +877,10 @@ LinkSet refineLinks(const ClusterTree& tree,
       slices[j], progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
         const Index a = packing.row(x, j), b = packing.other(x);
         const float gamma = packing.gamma(x);
-        write(a, b, gamma);
+        write(a, b, gamma, part);
         const int later = packing.sliceOf(b);
         if (later == j) {
-          write(b, a, gamma);
+          write(b, a, gamma, part);
         } else {
           pending[part][later].push_back(packing.pack(b, later, a, gamma));
         }
@@ -832,8 +890,8 @@ LinkSet refineLinks(const ClusterTree& tree,
       waiting.push_back(&p[j]);
     }
     forEachInPartsInParallel<true>(
-      waiting, progress.sub(q1, q2), [&](const PackedLink& x, std::size_t) {
-        write(packing.row(x, j), packing.other(x), packing.gamma(x));
+      waiting, progress.sub(q1, q2), [&](const PackedLink& x, std::size_t part) {
+        write(packing.row(x, j), packing.other(x), packing.gamma(x), part);
       });
     // The rows are uninitialised until written: every one must be full.
     for (Index n = n0; n < n1; ++n) {

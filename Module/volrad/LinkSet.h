@@ -36,6 +36,7 @@
 #pragma once
 
 #include "volrad/ClusterTree.h"
+#include "volrad/LatticeLines.h"
 #include "volrad/Progress.h"
 
 #include <algorithm>
@@ -234,8 +235,13 @@ struct LinkPacking
   int offsetBits = 0, nodeBits = 0, gammaBits = 31;
 };
 
-/// gamma of a link (see above).
-double linkGamma(const ClusterTree& tree, Index a, Index b, double depthTolerance);
+/// gamma of a link (see above); between two voxels that `centreLines` (if
+/// given) covers, with the exact depth of the line between their centres.
+double linkGamma(const ClusterTree& tree,
+                 Index a,
+                 Index b,
+                 double depthTolerance,
+                 const LatticeLines* centreLines = nullptr);
 
 LinkSet refineLinks(const ClusterTree& tree,
                     const LinkRefinement& refinement,
