@@ -51,9 +51,9 @@ VoxelPyramid::VoxelPyramid(const Scene& scene, int channel)
     level0[v] = float(scene.kappaTAt(v, channel));
   }
   grids_.push_back(g);
-  mean_.push_back(level0);
-  min_.push_back(level0);
-  max_.push_back(std::move(level0));
+  mean_.push_back(std::move(level0));
+  min_.emplace_back();
+  max_.emplace_back();
   while (g.dims[0] > 1 || g.dims[1] > 1 || g.dims[2] > 1) {
     const Grid& fine = grids_.back();
     Grid coarse;
@@ -77,8 +77,8 @@ VoxelPyramid::VoxelPyramid(const Scene& scene, int channel)
         }
         const Index f = fine.index(i, j, k);
         sum += mean_[l][f];
-        mn = std::min(mn, min_[l][f]);
-        mx = std::max(mx, max_[l][f]);
+        mn = std::min(mn, lowest(l)[f]);
+        mx = std::max(mx, highest(l)[f]);
       }
       mean[c] = float(sum / 8.0);
       lo[c] = mn;
@@ -126,11 +126,13 @@ VoxelPyramid::Depth VoxelPyramid::opticalDepth(const Vec3& a,
     out.cellsVisited = cells;
     return out;
   }
+  const std::vector<float>&mean = mean_[level], &lowest = this->lowest(level),
+                           &highest = this->highest(level);
   traverseVoxels(grids_[level], a, ab / length, length, [&](Index c, double l, double t) {
-    const double lo = min_[level][c];
-    out.estimate += mean_[level][c] * l;
+    const double lo = lowest[c];
+    out.estimate += mean[c] * l;
     out.lower += lo * l;
-    out.upper += max_[level][c] * l;
+    out.upper += highest[c] * l;
     ++out.cellsVisited;
     const double overlap = std::min(t + l, s1) - std::max(t, s0);
     if (overlap > 0.0) {
@@ -151,6 +153,21 @@ void VoxelPyramid::march(int level,
 {
   // The sub-segment [t0, t1] of the ray, walked on this level's cells.
   const Vec3 start = o + d * t0;
+  if (level == 0) {
+    // Voxels settle at once (settleCell with one value a voxel; the same sums).
+    const std::vector<float>& kappa = mean_[0];
+    traverseVoxels(grids_[0], start, d, t1 - t0, [&](Index c, double l, double) {
+      ++out.cellsVisited;
+      const double k = kappa[c];
+      if (k > 0.0) {
+        out.estimate += k * l;
+        out.lower += k * l;
+        out.upper += k * l;
+      }
+      return true;
+    });
+    return;
+  }
   traverseVoxels(grids_[level], start, d, t1 - t0, [&](Index c, double l, double t) {
     if (!settleCell(level, c, l, tolerancePerLength, out)) {
       march(finerLevel(level), start, d, t, t + l, tolerancePerLength, out);
@@ -166,11 +183,11 @@ bool VoxelPyramid::settleCell(int level,
                               Depth& out) const
 {
   ++out.cellsVisited;
-  const double hi = max_[level][c];
+  const double hi = highest(level)[c];
   if (hi <= 0.0) {
     return true; // empty: skipped whole
   }
-  const double lo = min_[level][c];
+  const double lo = lowest(level)[c];
   if (level == 0 || (hi - lo) <= tolerancePerLength) {
     out.estimate += mean_[level][c] * l;
     out.lower += lo * l;

@@ -26,8 +26,8 @@ public:
   int levels() const { return int(grids_.size()); }
   const Grid& grid(int level) const { return grids_[level]; }
   double meanKappaT(int level, Index cell) const { return mean_[level][cell]; }
-  double minKappaT(int level, Index cell) const { return min_[level][cell]; }
-  double maxKappaT(int level, Index cell) const { return max_[level][cell]; }
+  double minKappaT(int level, Index cell) const { return lowest(level)[cell]; }
+  double maxKappaT(int level, Index cell) const { return highest(level)[cell]; }
 
   /// Optical depth of the segment a -> b with guaranteed bounds:
   /// lower <= exact <= upper, and |estimate - exact| <= upper - lower.
@@ -66,7 +66,13 @@ private:
              double tolerancePerLength,
              Depth& out) const;
 
+  /// A level's minima and maxima: on level 0 the voxels' own extinction.
+  const std::vector<float>& lowest(int level) const { return level == 0 ? mean_[0] : min_[level]; }
+  const std::vector<float>& highest(int level) const { return level == 0 ? mean_[0] : max_[level]; }
+
   std::vector<Grid> grids_;
+  /// Per level; min_ and max_ are empty on level 0 (its one value a voxel,
+  /// kept once: 8 bytes a voxel fewer).
   std::vector<std::vector<float>> mean_, min_, max_;
 };
 
