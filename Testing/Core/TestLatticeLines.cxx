@@ -20,18 +20,7 @@ namespace {
 /// 23 x 17 x 19 voxels of unequal spacing, lumpy, with an empty slab.
 Scene latticeScene()
 {
-  Scene s;
-  s.grid.dims = { 23, 17, 19 };
-  s.grid.spacing = Vec3(0.1, 0.13, 0.08);
-  s.grid.origin = Vec3(-0.4, 0.2, 1.0);
-  s.allocate();
-  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    const Vec3 x = s.grid.voxelCentre(v);
-    const bool empty = s.grid.ijk(v)[1] >= 6 && s.grid.ijk(v)[1] < 9;
-    s.kappaA[v] = empty ? 0.f : float(lumpy(x, 0.0, 6.0));
-    s.sigmaI[v] = empty ? 0.f : float(lumpy(x, 0.0, 3.0, 1.0));
-  }
-  return s;
+  return lumpySlabScene({ 23, 17, 19 }, Vec3(0.1, 0.13, 0.08), Vec3(-0.4, 0.2, 1.0), 1, 6, 9, 6.0);
 }
 
 /// Integral of kappa_t along a -> b by the midpoint rule: independent of any

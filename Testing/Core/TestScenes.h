@@ -5,6 +5,7 @@
 #include "volrad/Sampling.h"
 #include "volrad/Scene.h"
 
+#include <array>
 #include <cmath>
 
 namespace volrad::test {
@@ -27,6 +28,31 @@ inline double lumpy(const Vec3& x, double lo, double hi, double phase = 0.0)
   const double f = 0.5 + 0.5 * std::sin(7.0 * x[0] + phase) * std::cos(5.0 * x[1] - 2.0 * phase) *
                            std::sin(6.0 * x[2] + 1.0 + phase);
   return lo + (hi - lo) * f;
+}
+
+/// A grey lumpy medium (kappa_a up to kappaA, sigma_i up to 3) on the given
+/// grid, empty where voxel index `axis` lies in [emptyFrom, emptyTo).
+inline Scene lumpySlabScene(const std::array<int, 3>& dims,
+                            const Vec3& spacing,
+                            const Vec3& origin,
+                            int axis,
+                            int emptyFrom,
+                            int emptyTo,
+                            double kappaA)
+{
+  Scene s;
+  s.grid.dims = dims;
+  s.grid.spacing = spacing;
+  s.grid.origin = origin;
+  s.allocate();
+  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
+    const Vec3 x = s.grid.voxelCentre(v);
+    const int i = s.grid.ijk(v)[axis];
+    const bool empty = i >= emptyFrom && i < emptyTo;
+    s.kappaA[v] = empty ? 0.f : float(lumpy(x, 0.0, kappaA));
+    s.sigmaI[v] = empty ? 0.f : float(lumpy(x, 0.0, 3.0, 1.0));
+  }
+  return s;
 }
 
 inline void fill(Scene& s, std::vector<float>& a, int c, double (*f)(const Vec3&))

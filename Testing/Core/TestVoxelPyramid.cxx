@@ -15,18 +15,7 @@ namespace {
 /// 13 x 10 x 7 voxels (not powers of two), lumpy medium with an empty slab.
 Scene pyramidScene()
 {
-  Scene s;
-  s.grid.dims = { 13, 10, 7 };
-  s.grid.spacing = Vec3(0.1, 0.13, 0.2);
-  s.grid.origin = Vec3(-0.4, 0.2, 1.0);
-  s.allocate();
-  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    const Vec3 x = s.grid.voxelCentre(v);
-    const bool empty = s.grid.ijk(v)[0] >= 4 && s.grid.ijk(v)[0] < 9;
-    s.kappaA[v] = empty ? 0.f : float(lumpy(x, 0.0, 5.0));
-    s.sigmaI[v] = empty ? 0.f : float(lumpy(x, 0.0, 3.0, 1.0));
-  }
-  return s;
+  return lumpySlabScene({ 13, 10, 7 }, Vec3(0.1, 0.13, 0.2), Vec3(-0.4, 0.2, 1.0), 0, 4, 9, 5.0);
 }
 
 } // namespace
