@@ -238,6 +238,11 @@ std::vector<Vec3> closeLineShifts(const Vec3& h)
 /// that their parents are linked).
 constexpr int kLatticeLineReach = 16;
 
+/// The coarsest optical-depth tolerance a cluster link's line is marched to
+/// when the oracle leaves it slack (BenchAccuracy's G the same as with 0.01
+/// on every link).
+constexpr double kMaxLinkDepthError = 0.25;
+
 /// 2-point Gauss-Legendre points of a leaf: 8 in a voxel, 4 on a patch.
 int leafPoints(const ClusterTree& t, Index n, std::array<Vec3, 8>& out)
 {
@@ -698,8 +703,8 @@ LinkSet refineLinks(const ClusterTree& tree,
                 const VoxelPyramid::Depth d =
                   tree.pyramid().opticalDepth(ca, cb, level, t0, t1, between);
                 const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
-                const double err = std::min(1.0, geometric) +
-                                   std::min(1.0, 0.5 * (d.upper - d.lower)) +
+                const double depthErr = std::min(1.0, 0.5 * (d.upper - d.lower));
+                const double err = std::min(1.0, geometric) + depthErr +
                                    std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
                 const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
                 const double S = directedSigma(tree, a, w, opt.viewSigma) *
@@ -707,7 +712,15 @@ LinkSet refineLinks(const ClusterTree& tree,
                                  (kPi * r * r);
                 link = x * S * err <= budget;
                 if (link) {
-                  gamma = linkGamma(tree, a, b, opt.depthTolerance);
+                  // The oracle has charged this link depthErr for its depth
+                  // and left budget / (x S) - err unspent: the line's depth
+                  // need be no finer than both together.
+                  const double slack = x * S > 0.0 ? budget / (x * S) - err : 1.0;
+                  gamma = linkGamma(
+                    tree,
+                    a,
+                    b,
+                    std::max(opt.depthTolerance, std::min(kMaxLinkDepthError, depthErr + slack)));
                 }
               }
             } else if (leafA && leafB) {
