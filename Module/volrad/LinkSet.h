@@ -54,7 +54,9 @@ struct LinkRefinement
   double tolerance = 1e-4;      ///< relative to powerScale
   double powerScale = 1.0;      ///< total power leaving all elements [W]
   std::vector<float> radiosity; ///< per tree node, the largest radiosity under it
-  double depthTolerance = 0.01; ///< optical-depth error of tau along a link
+  /// Optical-depth error of tau along a voxel link; a cluster link's line
+  /// may take what its oracle left unspent (up to 0.25), never less than this.
+  double depthTolerance = 0.01;
   /// Cross-section an empty voxel counts with in the error estimate, so that
   /// the views of empty space (their G) are refined like a typical voxel's.
   double viewSigma = 0.0;
