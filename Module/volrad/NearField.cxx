@@ -21,26 +21,44 @@ namespace {
 
 using namespace detail;
 
+/// A near pair before it is a row entry: rows and columns in 32 bits
+/// (elements and voxels are refused past that), 24 bytes instead of 32, since
+/// a scan's front sides make tens of millions of them at once.
 struct Triplet
 {
-  Index row, col;
-  double value;
+  Triplet() = default;
+  Triplet(Index r, Index c, double v)
+    : row(NearField::Column(r))
+    , col(NearField::Column(c))
+    , value(v)
+  {
+  }
+  NearField::Column row = 0, col = 0;
+  double value = 0.0;
   bool mirrored = false; ///< (row, col) swapped to key an unordered pair
 };
 
+bool byRowThenColumn(const Triplet& a, const Triplet& b)
+{
+  return a.row != b.row ? a.row < b.row : a.col < b.col;
+}
+
 using TripletLists = tbb::combinable<std::vector<Triplet>>;
 
+/// The threads' triplets in one vector, sorted (a thread-independent order,
+/// so that the sums below are deterministic). Reserved whole first, each
+/// thread's list freed once copied: no growing copy beside the lists.
 std::vector<Triplet> gatherTriplets(TripletLists& lists)
 {
+  std::size_t total = 0;
+  lists.combine_each([&](const std::vector<Triplet>& l) { total += l.size(); });
   std::vector<Triplet> all;
+  all.reserve(total);
   lists.combine_each([&](std::vector<Triplet>& l) {
     all.insert(all.end(), l.begin(), l.end());
     std::vector<Triplet>().swap(l);
   });
-  // Thread-independent order, so that sums below are deterministic.
-  std::sort(all.begin(), all.end(), [](const Triplet& a, const Triplet& b) {
-    return a.row != b.row ? a.row < b.row : a.col < b.col;
-  });
+  std::sort(all.begin(), all.end(), byRowThenColumn);
   return all;
 }
 
@@ -56,7 +74,7 @@ void toRows(const std::vector<Triplet>& t,
   value.resize(t.size());
   for (std::size_t k = 0; k < t.size(); ++k) {
     ++start[t[k].row + 1];
-    column[k] = NearField::Column(t[k].col);
+    column[k] = t[k].col;
     value[k] = float(t[k].value);
   }
   for (Index r = 0; r < rows; ++r) {
@@ -263,6 +281,10 @@ NearField computeNearField(const Scene& scene,
   const ChannelMedium medium(scene, channel);
   NearField out;
   out.radius = r;
+  if (g.voxelCount() > Index(std::numeric_limits<NearField::Column>::max())) {
+    throw Error("too many voxels for the near field (" + std::to_string(g.voxelCount()) +
+                ", at most " + std::to_string(std::numeric_limits<NearField::Column>::max()) + ")");
+  }
   out.elements = makeExchangeElements(scene, channel);
   const ExchangeElements& el = out.elements;
   const Index nv = g.voxelCount(), n = el.size();
@@ -424,9 +446,7 @@ NearField computeNearField(const Scene& scene,
             dst[o] = float(row[o]);
           }
           // Merge this voxel's repeated triplets.
-          std::sort(local.begin() + first, local.end(), [](const Triplet& a, const Triplet& b) {
-            return a.row != b.row ? a.row < b.row : a.col < b.col;
-          });
+          std::sort(local.begin() + first, local.end(), byRowThenColumn);
           std::size_t out_ = first;
           for (std::size_t k = first; k < local.size(); ++k) {
             if (out_ > first && local[out_ - 1].row == local[k].row &&
@@ -521,34 +541,56 @@ NearField computeNearField(const Scene& scene,
       t.mirrored = true;
     }
   }
-  std::sort(raw.begin(), raw.end(), [](const Triplet& a, const Triplet& b) {
-    return a.row != b.row ? a.row < b.row : a.col < b.col;
+  std::sort(raw.begin(), raw.end(), byRowThenColumn);
+  // Each unordered pair (a, b), a <= b, is one run of raw: its symmetric
+  // value goes to rows a and b. The rows are written straight from the runs
+  // (counted first), not through a second list of triplets: the runs come
+  // by (a, b), so each row receives its lower columns (from the runs keyed
+  // by them) before its higher ones, in order.
+  auto forEachPair = [&](auto&& f) {
+    for (std::size_t k = 0; k < raw.size();) {
+      const Index a = raw[k].row, b = raw[k].col;
+      double ab = 0.0, ba = 0.0;
+      for (; k < raw.size() && raw[k].row == a && raw[k].col == b; ++k) {
+        if (raw[k].mirrored) {
+          ba += raw[k].value;
+        } else {
+          ab += raw[k].value;
+        }
+      }
+      const double wa = weight(a), wb = weight(b);
+      const double s = a == b ? ab : (wa * ab + wb * ba) / (wa + wb);
+      if (s != 0.0) {
+        f(a, b, s);
+      }
+    }
+  };
+  out.extraStart.assign(n + 1, 0);
+  forEachPair([&](Index a, Index b, double) {
+    ++out.extraStart[a + 1];
+    if (a != b) {
+      ++out.extraStart[b + 1];
+    }
   });
-  std::vector<Triplet> sym;
-  for (std::size_t k = 0; k < raw.size();) {
-    const Index a = raw[k].row, b = raw[k].col;
-    double ab = 0.0, ba = 0.0;
-    for (; k < raw.size() && raw[k].row == a && raw[k].col == b; ++k) {
-      if (raw[k].mirrored) {
-        ba += raw[k].value;
-      } else {
-        ab += raw[k].value;
-      }
-    }
-    const double wa = weight(a), wb = weight(b);
-    const double s = a == b ? ab : (wa * ab + wb * ba) / (wa + wb);
-    if (s != 0.0) {
-      sym.push_back({ a, b, s });
+  for (Index e = 0; e < n; ++e) {
+    out.extraStart[e + 1] += out.extraStart[e];
+  }
+  out.extraColumn.resize(out.extraStart[n]);
+  out.extraValue.resize(out.extraStart[n]);
+  {
+    std::vector<Index> cursor(out.extraStart.begin(), out.extraStart.end() - 1);
+    auto put = [&](Index row, Index col, double s) {
+      out.extraColumn[cursor[row]] = NearField::Column(col);
+      out.extraValue[cursor[row]++] = float(s);
+    };
+    forEachPair([&](Index a, Index b, double s) {
+      put(a, b, s);
       if (a != b) {
-        sym.push_back({ b, a, s });
+        put(b, a, s);
       }
-    }
+    });
   }
   std::vector<Triplet>().swap(raw);
-  std::sort(sym.begin(), sym.end(), [](const Triplet& x, const Triplet& y) {
-    return x.row != y.row ? x.row < y.row : x.col < y.col;
-  });
-  toRows(sym, n, out.extraStart, out.extraColumn, out.extraValue);
 
   // Far weights: what each row's near part leaves of its target.
   out.far.assign(n, 0.0);
