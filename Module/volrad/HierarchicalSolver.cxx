@@ -306,21 +306,33 @@ Solution solveHierarchical(const Scene& scene,
   const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 3e-4;
   // Voxels with links and near rows: those holding medium (in some channel),
   // and the empty ones too unless their fields are skipped.
-  Index mediumVoxels = 0;
+  Index mediumVoxels = 0, frontSides = 0;
   for (Index v = 0; v < scene.grid.voxelCount(); ++v) {
     bool medium = false;
     for (int c = 0; c < scene.channels && !medium; ++c) {
       medium = scene.kappaTAt(v, c) > 0.0;
     }
     mediumVoxels += medium ? 1 : 0;
+    frontSides += medium && needsFrontSide(scene, v) ? 1 : 0;
   }
   const double linkedVoxels = double(opt.emptySpaceFields ? scene.grid.voxelCount() : mediumVoxels);
-  // Measured with few links (link tolerance 0.01): 430-540 bytes a voxel for
-  // one channel at 64^3, 495-566 for RGB (the smoke at 111x222x112),
-  // the caller's scene and solution included.
-  const double baseBytes = (420.0 + 40.0 * scene.channels) * double(scene.grid.voxelCount()) +
-                           sizeof(float) * NearField::stencilHalfFor(opt.nearRadius) *
-                             double(mediumVoxels);
+  // What the solve holds before its links, the caller's scene included:
+  // per voxel of the grid (coefficients, normals, element indices, pyramid,
+  // tree, direct light) and per element (near-field stencil, far weight,
+  // each channel's vectors). Resident memory measured before the link
+  // refinement, less the process's own: one channel 125 bytes a voxel and
+  // 130 an element (phantom, cloud and cube at 128^3; the phantom 120 + 32
+  // of scene at 256^3), RGB 253 a voxel of the smoke's box in all, the CT
+  // head (RGB, front sides) 523; 1.25 times that for what is not measured.
+  // The solution's fields are allocated once the links are gone.
+  const int C = scene.channels;
+  const double elements = double(mediumVoxels + frontSides + scene.grid.patchCount());
+  const double baseBytes =
+    1.25 * ((70.0 + 55.0 * C + (scene.normals.empty() ? 0.0 : sizeof(Normal))) *
+              double(scene.grid.voxelCount()) +
+            (sizeof(float) * NearField::stencilHalfFor(opt.nearRadius) + 40.0 + 40.0 * C) *
+              elements);
+  const double fieldBytes = 5.0 * sizeof(double) * C * double(scene.grid.voxelCount());
   // The fewest links a voxel needs: at the default tolerance (3e-7) the
   // fewest measured are 37 a voxel (the smoke at 111x222x112, 2.8 M voxels;
   // the phantom at 128^3 50, the cube 71), and about 2.2x fewer per decade
@@ -335,13 +347,13 @@ Solution solveHierarchical(const Scene& scene,
   const double perVoxel = std::min(1.0, kFewestLinksFlatFrom / linkedVoxels);
   const double fewestLinks =
     linkedVoxels * perVoxel * std::max(5.0, 30.0 * std::pow(1e-7 / linkTolerance, 0.35));
-  const double linkBytes = fewestLinks * double(kBytesPerLink);
+  const double linkBytes = std::max(fewestLinks * double(kBytesPerLink), fieldBytes);
   if (baseBytes + linkBytes > memoryLimit) {
     std::ostringstream msg;
     msg << "the hierarchical solve of " << scene.grid.voxelCount() << " voxels needs at least "
         << std::llround((baseBytes + linkBytes) / (1 << 20)) << " MiB ("
         << std::llround(baseBytes / (1 << 20)) << " MiB before any link, "
-        << std::llround(linkBytes / (1 << 20)) << " MiB for the fewest links it may need), over "
+        << std::llround(linkBytes / (1 << 20)) << " MiB for the fewest links it may need or, if more, its fields), over "
         << "its memory budget of " << memoryLimit / double(1 << 20)
         << " MiB: raise solver.epsilon or the budget, or shrink the volume";
     throw Error(msg.str());
@@ -349,7 +361,6 @@ Solution solveHierarchical(const Scene& scene,
   const std::size_t maxLinks = std::size_t((memoryLimit - baseBytes) / double(kBytesPerLink));
   HierarchicalReport report;
   const Grid& g = scene.grid;
-  const int C = scene.channels;
   const Index nv = g.voxelCount();
   // The fields (5 doubles a voxel and channel) are allocated once the first
   // group's links are gone: not at the solve's peak, the link refinement.
