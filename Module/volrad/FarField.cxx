@@ -99,15 +99,16 @@ FarField::FarField(const Scene& scene,
   // far field neither loses nor makes energy. Front sides (inside the
   // partition's full sides) are scaled per row, and their sources alike.
   const Index n = el_.size(), partition = el_.partitionSize();
-  inScale_.assign(n, 0.0);
-  std::fill(inScale_.begin(), inScale_.begin() + partition, 1.0);
+  // The balance's source weights: the partition's d, front sides silent.
+  std::vector<double> d(n, 0.0);
+  std::fill(d.begin(), d.begin() + partition, 1.0);
   scale_.assign(n, 1.0);
   self_.assign(n, 0.0);
   std::vector<double> received(n);
   for (int step = 0; step < kBalanceSteps; ++step) {
     std::fill(received.begin(), received.end(), 0.0);
     gather(
-      inScale_.data(),
+      d.data(),
       received.data(),
       nullptr,
       false,
@@ -115,33 +116,28 @@ FarField::FarField(const Scene& scene,
     for (Index e = 0; e < partition; ++e) {
       if (received[e] > 0.0) {
         const double ratio = std::max(0.0, near.far[e]) / received[e];
-        inScale_[e] = std::clamp(std::sqrt(inScale_[e] * ratio), 0.5, 2.0);
+        d[e] = std::clamp(std::sqrt(d[e] * ratio), 0.5, 2.0);
       }
     }
   }
   std::fill(received.begin(), received.end(), 0.0);
-  gather(inScale_.data(),
+  gather(d.data(),
          received.data(),
          nullptr,
          false,
          progress.sub(double(kBalanceSteps) / (kBalanceSteps + 1), 1.0));
   for (Index e = 0; e < n; ++e) {
     if (e < partition) {
-      scale_[e] = inScale_[e];
-      self_[e] = near.far[e] - inScale_[e] * received[e];
+      scale_[e] = d[e];
+      self_[e] = near.far[e] - d[e] * received[e];
     } else if (received[e] > 0.0) {
       scale_[e] = near.far[e] / received[e];
     }
   }
-  // Sources are scaled on the way in, front sides by their row's scale
-  // too: their links are symmetric, so each column then sums to its far
-  // weight (d_f (F^T d)_f = d_f (F d)_f = far_f), and what a front side
-  // sends is what its receivers take (the phantom's bone shell: energy
-  // residual 0.95% -> 2e-6 at 16^3, G against the dense solver 0.93% ->
-  // 0.88% rms).
-  for (Index e = partition; e < n; ++e) {
-    inScale_[e] = scale_[e];
-  }
+  // Sources are scaled by scale_ too (apply), front sides included: their
+  // links are symmetric, so each one's column then sums to its far weight
+  // and what it sends is what its receivers take (with 1 there, the
+  // phantom's bone shell sent 1.3% too much and its energy residual was 1%).
 }
 
 void FarField::apply(const double* x,
@@ -150,7 +146,7 @@ void FarField::apply(const double* x,
                      const ProgressRange& progress) const
 {
   scaled_.resize(el_.size());
-  forEach(el_.size(), [&](Index e) { scaled_[e] = inScale_[e] * x[e]; });
+  forEach(el_.size(), [&](Index e) { scaled_[e] = scale_[e] * x[e]; });
   gather(scaled_.data(), y, viewOut, true, progress);
   forEach(el_.size(), [&](Index e) { y[e] += self_[e] * x[e]; });
 }
@@ -411,7 +407,7 @@ std::size_t FarField::bytes() const
   return (emit_.size() + phi_.size() + open_.size() + frontEmit_.size() + leafDirect_.size() +
           leafFront_.size() + slopeLimit_.size()) *
            sizeof(float) +
-         (scale_.size() + inScale_.size() + self_.size() + scaled_.size()) * sizeof(double) +
+         (scale_.size() + self_.size() + scaled_.size()) * sizeof(double) +
          (frontMoment_.size() + psi_.size() + centroid_.size() + moment_.size() +
           gradient_.size()) *
            sizeof(Vec3f) +

@@ -77,7 +77,7 @@ private:
   const ExchangeElements& el_;
   bool fronts_ = false;
   static constexpr int kBalanceSteps = 6;
-  std::vector<double> scale_, inScale_, self_;
+  std::vector<double> scale_, self_;
   /// Per node, its centroid (the gather's directions: ClusterTree::centroid
   /// finds a node's level first, at every link).
   std::vector<Vec3f> centroid_;
