@@ -4,6 +4,7 @@
 #include "volrad/LatticeLines.h"
 #include "volrad/Error.h"
 #include "volrad/Sampling.h"
+#include "volrad/VoxelGain.h"
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -38,29 +39,6 @@ struct Pair
   std::int32_t a, b;
 };
 
-/// log of what a voxel leaf collides with or emits towards w, relative to
-/// its cross-section, per unit of the transmittance measured from its
-/// centre: integral over the voxel of kappa exp(kappa (x - c).w) dx, which
-/// is kappa V prod_a sinh(z_a) / z_a, z_a = kappa h_a w_a / 2 (exact for
-/// a homogeneous voxel seen from afar). Links between leaves then march the
-/// whole line between the points they join, each voxel's own part included.
-/// 0 for patches.
-double logLeafFactor(const ClusterTree& t, Index n, const Vec3& w)
-{
-  const double sigma = t.sigma(n), kappa = t.meanKappaT(n);
-  if (t.isPatch(n) || !(sigma > 0.0) || !(kappa > 0.0)) {
-    return 0.0;
-  }
-  const Grid& g = t.grid(0);
-  double log = std::log(kappa * g.voxelVolume() / sigma);
-  for (int a = 0; a < 3; ++a) {
-    const double z = 0.5 * kappa * g.spacing[a] * std::abs(w[a]);
-    // log(sinh(z) / z), without overflow for thick voxels.
-    log += z < 1e-4 ? z * z / 6.0 : z + std::log((1.0 - std::exp(-2.0 * z)) / (2.0 * z));
-  }
-  return log;
-}
-
 /// sigma of a node towards direction w (pointing away from it), for the
 /// error estimate: empty voxels count with viewSigma each, since their views
 /// (G of empty space) come from the same links.
@@ -91,6 +69,100 @@ double exitDistance(const ClusterTree& t, Index n, const Vec3& c, const Vec3& w)
     }
   }
   return std::max(0.0, d);
+}
+
+/// The part of a line's optical depth from p, inside leaf n, along the unit
+/// w to n's boundary (0 for patches).
+double insideDepth(const ClusterTree& t, Index n, const Vec3& p, const Vec3& w)
+{
+  return t.isPatch(n) ? 0.0 : t.meanKappaT(n) * exitDistance(t, n, p, w);
+}
+
+/// The share of voxel leaf n's extinction that the medium just past the
+/// faces it shows towards w has: the voxels across them, weighted by the
+/// faces' projected areas (nothing past the grid's edge), at most 1.
+double outsideShare(const ClusterTree& t, Index n, const Vec3& w)
+{
+  const double kappa = t.meanKappaT(n);
+  const Grid& g = t.grid(0);
+  const auto ijk = g.ijk(n);
+  double sum = 0.0, area = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    if (w[a] == 0.0) {
+      continue;
+    }
+    const double face = std::abs(w[a]) * g.spacing[(a + 1) % 3] * g.spacing[(a + 2) % 3];
+    auto q = ijk;
+    q[a] += w[a] > 0.0 ? 1 : -1;
+    area += face;
+    if (q[a] >= 0 && q[a] < g.dims[a]) {
+      sum += face * t.pyramid().meanKappaT(0, g.index(q[0], q[1], q[2]));
+    }
+  }
+  return area > 0.0 && kappa > 0.0 ? std::min(1.0, sum / (area * kappa)) : 1.0;
+}
+
+/// A leaf as the end of a link towards w.
+struct LeafEnd
+{
+  /// log of what the leaf collides with or emits towards w relative to its
+  /// cross-section, per unit of the transmittance of the line from its
+  /// centre: log(kappa V / sigma) plus the voxel's gain (VoxelGain.h) for
+  /// the medium outside it. 0 for patches.
+  double logFactor = 0.0;
+  /// How much an off-centre line's own depth inside the voxel counts, the
+  /// rest being the centre line's (depthFromCentres): the gain's share of
+  /// the medium outside, less in thick voxels (leafEnd). 1 for patches,
+  /// which have no inside, and unless asked for.
+  double lineShare = 1.0;
+};
+
+/// The end towards w of a link from leaf n; lines: whether its lineShare is
+/// wanted (only links marched along other lines than the centres' need it).
+LeafEnd leafEnd(const ClusterTree& t, Index n, const Vec3& w, bool lines = false)
+{
+  LeafEnd e;
+  const double sigma = t.sigma(n), kappa = t.meanKappaT(n);
+  if (t.isPatch(n) || !(sigma > 0.0) || !(kappa > 0.0)) {
+    return e;
+  }
+  const Grid& g = t.grid(0);
+  const double share = outsideShare(t, n, w);
+  e.logFactor = std::log(kappa * g.voxelVolume() / sigma) + logVoxelGain(kappa, share, g.spacing, w);
+  if (lines) {
+    // The neighbours' extinction is a coarse guess of the medium outside:
+    // an error d in the share scales a Gauss line's light by up to
+    // exp(0.6 d D), D the centre line's depth inside the voxel, which in
+    // thick voxels (bone: tens of optical depths) made near-field rows sum
+    // above 1 and the shooting diverge. So lines count the share less as D
+    // grows, by exp(-(D/2)^2) (BenchAccuracy's scenes, D below 1, as with
+    // the share).
+    const double half = 0.5 * insideDepth(t, n, t.centroid(n), w);
+    e.lineShare = share * std::exp(-half * half);
+  }
+  return e;
+}
+
+/// The optical depth `depth` of a line from pa in leaf a to pb in leaf b,
+/// parallel to the line between their centres (w from a to b), with each
+/// end's own part as its gain is relative to: with the same medium outside
+/// (lineShare 1) the line's own part, as marched (the depth is linear, and
+/// the gain is the same from any point); with nothing outside, the centre
+/// line's (else an off-centre Gauss point would count its voxel's light as
+/// less attenuated twice: e^{kappa h / 4} and more a side).
+double depthFromCentres(const ClusterTree& t,
+                        Index a,
+                        Index b,
+                        const Vec3& pa,
+                        const Vec3& pb,
+                        const Vec3& w,
+                        double depth,
+                        const LeafEnd& ea,
+                        const LeafEnd& eb)
+{
+  const double offA = insideDepth(t, a, pa, w) - insideDepth(t, a, t.centroid(a), w);
+  const double offB = insideDepth(t, b, pb, -w) - insideDepth(t, b, t.centroid(b), -w);
+  return std::max(0.0, depth - (1.0 - ea.lineShare) * offA - (1.0 - eb.lineShare) * offB);
 }
 
 /// A voxel end's factor exceeds its own attenuation by kappa h / 2 at most;
@@ -302,7 +374,7 @@ bool homogeneousBetween(const VoxelPyramid& p,
 /// (their 1/r^2 mean is the exact table's), and links with a patch
 /// integrate cosines, 1/r^2 and transmittance over the Gauss points of both
 /// ends, per unit of the centroids' cosines the gathering applies. Lines are
-/// marched whole, each voxel end's factor (logLeafFactor) included.
+/// marched whole, each voxel end's factor (leafEnd) included.
 double closeLeafGamma(const ClusterTree& t,
                       const LatticeLines& lines,
                       Index a,
@@ -314,7 +386,8 @@ double closeLeafGamma(const ClusterTree& t,
   const VoxelPyramid& pyramid = t.pyramid();
   if (!t.isPatch(a) && !t.isPatch(b)) {
     const Vec3 w = (cb - ca) / rc;
-    const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
+    const LeafEnd ea = leafEnd(t, a, w, true), eb = leafEnd(t, b, -w, true);
+    const double ends = ea.logFactor + eb.logFactor;
     const auto ia = t.grid(0).ijk(a), ib = t.grid(0).ijk(b);
     const int di = ib[0] - ia[0], dj = ib[1] - ia[1], dk = ib[2] - ia[2];
     const auto kappa = [&](Index v) { return pyramid.meanKappaT(0, v); };
@@ -325,7 +398,9 @@ double closeLeafGamma(const ClusterTree& t,
     }
     double depth[8], least = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 8; ++k) {
-      depth[k] = lines.depth(kappa, a, di, dj, dk, k);
+      const Vec3 s = gaussShift(t.grid(0).spacing, k);
+      depth[k] =
+        depthFromCentres(t, a, b, ca + s, cb + s, w, lines.depth(kappa, a, di, dj, dk, k), ea, eb);
       least = std::min(least, depth[k]);
     }
     double tau = 0.0;
@@ -352,8 +427,10 @@ double closeLeafGamma(const ClusterTree& t,
       const Vec3 w = d / std::sqrt(r2);
       const double c = std::max(0.0, cosine(a, w)) * std::max(0.0, cosine(b, -w));
       if (c > 0.0) {
-        const double ends = logLeafFactor(t, a, w) + logLeafFactor(t, b, -w);
-        const double depth = pyramid.opticalDepth(pa[i], pb[j], 0).estimate;
+        const LeafEnd ea = leafEnd(t, a, w, true), eb = leafEnd(t, b, -w, true);
+        const double ends = ea.logFactor + eb.logFactor;
+        const double depth = depthFromCentres(
+          t, a, b, pa[i], pb[j], w, pyramid.opticalDepth(pa[i], pb[j], 0).estimate, ea, eb);
         sum += c * std::exp(std::min(ends - depth, kMaxLogGain)) / (kPi * r2);
       }
     }
@@ -587,8 +664,8 @@ double linkGamma(const ClusterTree& tree,
   } else if (t1 > t0) {
     depth = tree.pyramid().opticalDepthAdaptive(ca + t0 * w, ca + t1 * w, depthTolerance).estimate;
   }
-  const double ends = (tree.isLeaf(a) ? logLeafFactor(tree, a, w) : 0.0) +
-                      (tree.isLeaf(b) ? logLeafFactor(tree, b, -w) : 0.0);
+  const double ends = (tree.isLeaf(a) ? leafEnd(tree, a, w).logFactor : 0.0) +
+                      (tree.isLeaf(b) ? leafEnd(tree, b, -w).logFactor : 0.0);
   // The medium beside a cluster's sides, which its light crosses before all
   // of it has passed the box's foremost corner: the next radius of the line.
   auto beside = [&](Index n, double from, double to) {
