@@ -342,10 +342,8 @@ TEST(VolradCommand, TheCtHeadShrunkToThickVoxelsSolvesHierarchicallyAsDense)
     const CommandRun r =
       run(kData + "/headsq/quarter.nhdr --shrink 8 --scene " + scene + " -o " + out);
     ASSERT_EQ(r.code, 0) << r.output;
-    vtkNew<vtkXMLImageDataReader> reader;
-    reader->SetFileName(out.c_str());
-    reader->Update();
-    lit[m] = reader->GetOutput();
+    lit[m] = readOutput(out);
+    ASSERT_NE(lit[m], nullptr) << out;
     const double residual =
       lit[m]->GetFieldData()->GetArray("EnergyBalanceResidual")->GetComponent(0, 0);
     EXPECT_LT(residual, 5e-3) << methods[m];
