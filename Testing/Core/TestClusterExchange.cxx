@@ -139,7 +139,7 @@ TEST(ClusterExchange, MatchesTheDenseSumsAlongAxesAndDiagonals)
 /// voxel (where a voxel's own attenuation matters most). Close links (2-5
 /// voxels apart, several lines each) must agree within 5% and 15%, and
 /// meet the single-line links past them without a jump. Before the voxel-
-/// end factor (logLeafFactor) they were 11-17% and 50-67% too strong, and
+/// end gain (VoxelGain.h, LinkSet.cxx leafEnd) they were 11-17% and 50-67% too strong, and
 /// jumped by 13% and 80% at 6 voxels: that biased G near a point light by
 /// 2% at 24^3. (Further apart, a pair's dense value rests on few of the
 /// dense quadrature's lines and is not compared.)
