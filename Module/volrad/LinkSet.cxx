@@ -115,6 +115,9 @@ struct LeafEnd
   /// the medium outside, less in thick voxels (leafEnd). 1 for patches,
   /// which have no inside, and unless asked for.
   double lineShare = 1.0;
+  /// The centre line's depth inside the voxel towards w (when lineShare is
+  /// asked for; 0 for patches).
+  double centreDepth = 0.0;
 };
 
 /// The end towards w of a link from leaf n; lines: whether its lineShare is
@@ -137,7 +140,8 @@ LeafEnd leafEnd(const ClusterTree& t, Index n, const Vec3& w, bool lines = false
     // above 1 and the shooting diverge. So lines count the share less as D
     // grows, by exp(-(D/2)^2) (BenchAccuracy's scenes, D below 1, as with
     // the share).
-    const double half = 0.5 * insideDepth(t, n, t.centroid(n), w);
+    e.centreDepth = insideDepth(t, n, t.centroid(n), w);
+    const double half = 0.5 * e.centreDepth;
     e.lineShare = share * std::exp(-half * half);
   }
   return e;
@@ -160,8 +164,9 @@ double depthFromCentres(const ClusterTree& t,
                         const LeafEnd& ea,
                         const LeafEnd& eb)
 {
-  const double offA = insideDepth(t, a, pa, w) - insideDepth(t, a, t.centroid(a), w);
-  const double offB = insideDepth(t, b, pb, -w) - insideDepth(t, b, t.centroid(b), -w);
+  // (A line's own part counts whole at lineShare 1: no box to intersect.)
+  const double offA = ea.lineShare < 1.0 ? insideDepth(t, a, pa, w) - ea.centreDepth : 0.0;
+  const double offB = eb.lineShare < 1.0 ? insideDepth(t, b, pb, -w) - eb.centreDepth : 0.0;
   return std::max(0.0, depth - (1.0 - ea.lineShare) * offA - (1.0 - eb.lineShare) * offB);
 }
 
