@@ -108,6 +108,28 @@ struct ChannelOperator
     });
     return y;
   }
+
+  /// (I - N)^-1 v to second order, v + N v + N^2 v, N = gain * near field:
+  /// the Krylov solve's right preconditioner. In a high-albedo medium most
+  /// of a voxel's scattered light lands in its near field, so this takes
+  /// many of BiCGSTAB's steps for two stencil sweeps (cloud 32^3: 53 -> 29
+  /// steps); always the same linear map, as BiCGSTAB needs. Two vectors
+  /// while it runs, one returned.
+  Vector nearSeries(const Vector& v) const
+  {
+    auto applyN = [&](const Vector& x) {
+      Vector y = Vector::Zero(x.size());
+      near.apply(scene.grid, x.data(), y.data(), true);
+      tbb::parallel_for(Index(0), Index(y.size()), [&](Index e) {
+        y[e] *= gain[e];
+      });
+      return y;
+    };
+    const Vector nv = applyN(v);
+    Vector z = applyN(nv);
+    z += nv + v;
+    return z;
+  }
 };
 
 /// Largest radiosity under every tree node, each element's at least
@@ -230,8 +252,10 @@ bool shoot(const ChannelOperator& op,
   return true;
 }
 
-/// BiCGSTAB on (I - M) x = x0 from the current x; dx becomes the residual
-/// (what the next sweep would shoot).
+/// BiCGSTAB on (I - M) x = x0 from the current x, right-preconditioned by
+/// ChannelOperator::nearSeries (so r stays the true residual that the
+/// stopping test reads); dx becomes the residual (what the next sweep would
+/// shoot).
 void krylov(const ChannelOperator& op,
             const Vector& x0,
             IterationState& s,
@@ -271,18 +295,22 @@ void krylov(const ChannelOperator& op,
     }
     const double beta = (rho1 / rho) * (alpha / omega);
     p = r + beta * (p - omega * v);
-    v = A(p);
-    alpha = rho1 / dot(r0, v);
+    {
+      const Vector ph = op.nearSeries(p);
+      v = A(ph);
+      alpha = rho1 / dot(r0, v);
+      s.x += alpha * ph;
+    }
     r -= alpha * v; // s
     s.iterations += 1;
     if (s.change(r) <= epsilon) {
-      s.x += alpha * p;
       continue;
     }
-    const Vector t = A(r);
+    const Vector sh = op.nearSeries(r);
+    const Vector t = A(sh);
     const double tt = dot(t, t);
     omega = tt > 0.0 ? dot(t, r) / tt : 0.0;
-    s.x += alpha * p + omega * r;
+    s.x += omega * sh;
     r -= omega * t;
     rho = rho1;
     s.iterations += 1;
