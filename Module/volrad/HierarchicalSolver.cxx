@@ -111,10 +111,10 @@ struct ChannelOperator
 
   /// (I - N)^-1 v to second order, v + N v + N^2 v, N = gain * near field:
   /// the Krylov solve's right preconditioner. In a high-albedo medium most
-  /// of a voxel's scattered light lands in its near field, so this takes
-  /// many of BiCGSTAB's steps for two stencil sweeps (cloud 32^3: 53 -> 29
-  /// steps); always the same linear map, as BiCGSTAB needs. Two vectors
-  /// while it runs, one returned.
+  /// of a voxel's scattered light lands in its near field, so two stencil
+  /// sweeps each time the operator is applied save many applications
+  /// (cloud 32^3: 53 -> 29); always the same linear map, as BiCGSTAB
+  /// needs. Two vectors while it runs, one returned.
   Vector nearSeries(const Vector& v) const
   {
     auto applyN = [&](const Vector& x) {
