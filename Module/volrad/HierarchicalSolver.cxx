@@ -103,10 +103,15 @@ struct ChannelOperator
     Vector y = Vector::Zero(x.size());
     near.apply(scene.grid, x.data(), y.data(), true);
     far->apply(x.data(), y.data(), nullptr, progress);
+    scaleByGain(y);
+    return y;
+  }
+
+  void scaleByGain(Vector& y) const
+  {
     tbb::parallel_for(Index(0), Index(y.size()), [&](Index e) {
       y[e] *= gain[e];
     });
-    return y;
   }
 
   /// (I - N)^-1 v to second order, v + N v + N^2 v, N = gain * near field:
@@ -120,9 +125,7 @@ struct ChannelOperator
     auto applyN = [&](const Vector& x) {
       Vector y = Vector::Zero(x.size());
       near.apply(scene.grid, x.data(), y.data(), true);
-      tbb::parallel_for(Index(0), Index(y.size()), [&](Index e) {
-        y[e] *= gain[e];
-      });
+      scaleByGain(y);
       return y;
     };
     const Vector nv = applyN(v);
