@@ -4,9 +4,12 @@
 // (BenchmarkScenes.h) at 32^3, 64^3, 128^3 and 256^3, or at the sizes and
 // scenes given:
 //   BenchHierarchicalSolver [--scenes a,b,c] [--epsilon E] [--link-tolerance T]
-//                           [--threads N] [--memory-budget GIB] [--mc] [N ...]
+//                           [--threads N] [--memory-budget GIB] [--mc]
+//                           [--skip-empty-space] [N ...]
 // Each run is a child process, so its peak resident memory is its own; a
 // run that fails (memory refused, solver error) prints its message.
+// --skip-empty-space leaves out the fields of empty voxels (the air around
+// the phantom, the gaps in the cloud: HierarchicalOptions::emptySpaceFields).
 // With --mc, G of the cube along the x axis through the light is compared
 // with the track-length Monte Carlo estimator of the same medium.
 #include "BenchmarkScenes.h"
@@ -154,9 +157,12 @@ int main(int argc, char* argv[])
       options.memoryLimitBytes = number("--memory-budget", argv[++i]) * double(1 << 30);
     } else if (std::strcmp(argv[i], "--mc") == 0) {
       mc = true;
+    } else if (std::strcmp(argv[i], "--skip-empty-space") == 0) {
+      options.emptySpaceFields = false;
     } else if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
       std::printf("usage: BenchHierarchicalSolver [--scenes phantom,cloud,cube] [--epsilon E]\n"
                   "         [--link-tolerance T] [--threads N] [--memory-budget GiB] [--mc]\n"
+                  "         [--skip-empty-space]\n"
                   "         [SIZE ...]   (grid sizes n for n^3 voxels; default 32 64 128 256)\n");
       return 0;
     } else {

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -49,6 +50,9 @@ constexpr double kFewestLinksFlatFrom = 128.0 * 128.0 * 128.0;
 /// accuracy scenes, 8-20% less time again at 32^3-64^3 (fewer first-pass
 /// links to refine, balance and iterate over); 1000x gave no more.
 constexpr double kFirstPassCoarsening = 300.0;
+
+/// The default link tolerance per unit of epsilon (HierarchicalOptions).
+constexpr double kLinkToleranceOfEpsilon = 3e-4;
 
 /// A converged solve whose energy terms miss each other by more than this
 /// share of the light is no solution but an operator that amplifies light
@@ -174,6 +178,35 @@ std::vector<float> nodeRadiosity(const ClusterTree& tree,
     }
   }
   return r;
+}
+
+/// Per node without medium: the least direct incident radiation of its
+/// voxels (track / V) times `scale` per voxel, the direct power the node's
+/// views would intercept (LinkRefinement::viewLight); 0 where there is medium.
+std::vector<float> viewDirectPower(const ClusterTree& tree, const std::vector<float>& track, double scale)
+{
+  std::vector<float> d(tree.size(), 0.f);
+  const Grid& g = tree.grid(0);
+  const double perVoxel = scale / g.voxelVolume();
+  for (Index v = 0; v < g.voxelCount(); ++v) {
+    d[v] = tree.sigma(v) > 0.0 ? 0.f : float(track[v] * perVoxel);
+  }
+  for (int l = 1; l < tree.levels(); ++l) {
+    for (Index c = 0; c < tree.grid(l).voxelCount(); ++c) {
+      const Index node = tree.voxelNode(l, c);
+      if (tree.sigma(node) > 0.0) {
+        continue;
+      }
+      std::array<Index, 8> kids;
+      const int k = tree.children(node, kids);
+      float least = std::numeric_limits<float>::max();
+      for (int i = 0; i < k; ++i) {
+        least = std::min(least, d[kids[i]]);
+      }
+      d[node] = k > 0 ? least * float(k) : 0.f;
+    }
+  }
+  return d;
 }
 
 struct IterationState
@@ -341,7 +374,7 @@ Solution solveHierarchical(const Scene& scene,
   // element vectors, hierarchy, direct light, fields), then the links.
   const double memoryLimit =
     opt.memoryLimitBytes > 0.0 ? opt.memoryLimitBytes : 0.5 * double(physicalMemoryBytes());
-  const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * 3e-4;
+  const double linkTolerance = opt.linkTolerance > 0.0 ? opt.linkTolerance : opt.epsilon * kLinkToleranceOfEpsilon;
   // Voxels with links and near rows: those holding medium (in some channel),
   // and the empty ones too unless their fields are skipped.
   Index mediumVoxels = 0, frontSides = 0;
@@ -503,6 +536,12 @@ Solution solveHierarchical(const Scene& scene,
         }
       }
 
+      // A view of lit empty space may carry wrongly epsilon of the direct
+      // power it receives (LinkRefinement::viewLight; with the link
+      // tolerance set, in the same ratio to it as the default's): it changes
+      // only that voxel's G, of which the direct light is already exact.
+      const double viewTolerance = linkTolerance / kLinkToleranceOfEpsilon;
+
       // Each channel's equations (Channel holds references into itself: not moved).
       std::vector<std::unique_ptr<Channel>> channels;
       for (const int ch : chans) {
@@ -541,7 +580,9 @@ Solution solveHierarchical(const Scene& scene,
         // The first pass only estimates where the light goes: coarser links.
         refinement.tolerance = pass == 0 ? kFirstPassCoarsening * linkTolerance : linkTolerance;
         refinement.viewSigma = viewSigma;
-        refinement.emptyViews = opt.emptySpaceFields;
+        // The first pass's solution, all it is for, takes nothing from the
+        // views of empty space: they wait for the second.
+        refinement.emptyViews = opt.emptySpaceFields && pass == 1;
         refinement.maxLinks = std::max<std::size_t>(1, maxLinks);
         // Links serve every channel: each node's radiosity relative to its
         // channel's total power, the largest over the channels.
@@ -555,7 +596,18 @@ Solution solveHierarchical(const Scene& scene,
           for (Index k = 0; k < tree.size(); ++k) {
             refinement.radiosity[k] = std::max(refinement.radiosity[k], float(r[k] / power));
           }
+          if (refinement.emptyViews) {
+            const std::vector<float> d = viewDirectPower(tree, c->track, viewSigma / power);
+            if (refinement.viewLight.empty()) {
+              refinement.viewLight = d;
+            } else {
+              for (Index k = 0; k < tree.size(); ++k) {
+                refinement.viewLight[k] = std::min(refinement.viewLight[k], d[k]);
+              }
+            }
+          }
         }
+        refinement.viewTolerance = viewTolerance;
         // The first pass's links go before the second pass refines: both
         // at once would be the solve's peak.
         far.reset();

@@ -45,7 +45,11 @@ struct HierarchicalOptions
   /// below epsilon times its radiosity (plus 1e-3 of the largest, so that
   /// dark elements do not rule). Links are refined until the power a link
   /// may carry wrongly is below linkTolerance times the total power leaving
-  /// all elements; by default linkTolerance = 3e-4 epsilon.
+  /// all elements; by default linkTolerance = 3e-4 epsilon. A view of empty
+  /// space (a link whose end holds no medium: only that voxel's G) is also
+  /// fine enough when that power is below linkTolerance / 3e-4 (epsilon, by
+  /// default) of the direct light's power on the empty end, taken as if it
+  /// held the mean medium.
   double epsilon = 1e-3;
   double linkTolerance = 0.0; ///< 0: 3e-4 epsilon
   int maxIterations = 1000000;

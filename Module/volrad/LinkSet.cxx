@@ -792,12 +792,17 @@ LinkSet refineLinks(const ClusterTree& tree,
                 const double S = directedSigma(tree, a, w, opt.viewSigma) *
                                  directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /
                                  (kPi * r * r);
-                link = x * S * err <= budget;
+                double allowed = budget;
+                if ((sa <= 0.0 || sb <= 0.0) && !opt.viewLight.empty()) {
+                  const Index view = sa <= 0.0 ? a : b;
+                  allowed = std::max(allowed, opt.viewTolerance * double(opt.viewLight[view]));
+                }
+                link = x * S * err <= allowed;
                 if (link) {
                   // The oracle has charged this link depthErr for its depth
-                  // and left budget / (x S) - err unspent: the line's depth
+                  // and left allowed / (x S) - err unspent: the line's depth
                   // need be no finer than both together.
-                  const double slack = x * S > 0.0 ? budget / (x * S) - err : 1.0;
+                  const double slack = x * S > 0.0 ? allowed / (x * S) - err : 1.0;
                   gamma = linkGamma(
                     tree,
                     a,

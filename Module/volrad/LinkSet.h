@@ -60,6 +60,15 @@ struct LinkRefinement
   /// Cross-section an empty voxel counts with in the error estimate, so that
   /// the views of empty space (their G) are refined like a typical voxel's.
   double viewSigma = 0.0;
+  /// Per tree node without medium: the least direct incident radiation
+  /// (from the lights, exact) of its voxels times viewSigma per voxel, the
+  /// direct power it would intercept, relative to powerScale; empty: not
+  /// used. A view (a link with an end without
+  /// medium) is also fine enough when the power it may carry wrongly is
+  /// under viewTolerance of this: what it changes is only that end's G,
+  /// which the direct light, already exact, makes less sensitive.
+  std::vector<float> viewLight;
+  double viewTolerance = 0.0;
   /// Links with an end that holds no medium (its views only) are left out:
   /// a sparse solve, where empty space costs no links. The others are the
   /// same links as with them.
