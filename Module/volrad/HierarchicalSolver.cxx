@@ -181,16 +181,18 @@ std::vector<float> nodeRadiosity(const ClusterTree& tree,
 }
 
 /// Per node without medium: the least direct incident radiation of its
-/// voxels (track / V) times `scale` per voxel, the direct power the node's
-/// views would intercept (LinkRefinement::viewLight); 0 where there is medium.
+/// voxels (track / V) times `scale` per voxel of its box (the count the
+/// links' error estimate gives it), the direct power the node's views
+/// would intercept (LinkRefinement::viewLight); 0 where there is medium.
 std::vector<float> viewDirectPower(const ClusterTree& tree, const std::vector<float>& track, double scale)
 {
-  std::vector<float> d(tree.size(), 0.f);
+  std::vector<float> least(tree.size(), 0.f); // per voxel, the least under each node
   const Grid& g = tree.grid(0);
   const double perVoxel = scale / g.voxelVolume();
   for (Index v = 0; v < g.voxelCount(); ++v) {
-    d[v] = tree.sigma(v) > 0.0 ? 0.f : float(track[v] * perVoxel);
+    least[v] = tree.sigma(v) > 0.0 ? 0.f : float(track[v] * perVoxel);
   }
+  std::vector<float> d = least;
   for (int l = 1; l < tree.levels(); ++l) {
     for (Index c = 0; c < tree.grid(l).voxelCount(); ++c) {
       const Index node = tree.voxelNode(l, c);
@@ -199,11 +201,14 @@ std::vector<float> viewDirectPower(const ClusterTree& tree, const std::vector<fl
       }
       std::array<Index, 8> kids;
       const int k = tree.children(node, kids);
-      float least = std::numeric_limits<float>::max();
+      float m = k > 0 ? std::numeric_limits<float>::max() : 0.f;
       for (int i = 0; i < k; ++i) {
-        least = std::min(least, d[kids[i]]);
+        m = std::min(m, least[kids[i]]);
       }
-      d[node] = k > 0 ? least * float(k) : 0.f;
+      std::array<int, 3> lo, hi;
+      tree.box(node, lo, hi);
+      least[node] = m;
+      d[node] = m * float(hi[0] - lo[0] + 1) * float(hi[1] - lo[1] + 1) * float(hi[2] - lo[2] + 1);
     }
   }
   return d;
