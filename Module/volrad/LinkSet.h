@@ -63,10 +63,9 @@ struct LinkRefinement
   /// Per tree node without medium: the least direct incident radiation
   /// (from the lights, exact) of its voxels times viewSigma per voxel, the
   /// direct power it would intercept, relative to powerScale; empty: not
-  /// used. A view (a link with an end without
-  /// medium) is also fine enough when the power it may carry wrongly is
-  /// under viewTolerance of this: what it changes is only that end's G,
-  /// which the direct light, already exact, makes less sensitive.
+  /// used. A view (a link with an end without medium) is also fine enough
+  /// when the power it may carry wrongly is under viewTolerance of this:
+  /// it changes only that end's G, whose direct part is already exact.
   std::vector<float> viewLight;
   double viewTolerance = 0.0;
   /// Links with an end that holds no medium (its views only) are left out:

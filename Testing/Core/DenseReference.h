@@ -23,36 +23,45 @@ inline DenseSolverOptions fineDenseOptions()
   return o;
 }
 
-/// f(relative difference) for each voxel whose reference G is above 1% of
-/// the largest: the voxels the accuracy figures speak of.
+/// f(index, relative difference) for each voxel whose reference G is above
+/// 1% of the largest: the voxels the accuracy figures speak of.
 template<class F>
 void forEachRelative(const std::vector<double>& ref, const std::vector<double>& x, F&& f)
 {
   const double big = *std::max_element(ref.begin(), ref.end());
   for (std::size_t i = 0; i < ref.size(); ++i) {
     if (ref[i] >= 0.01 * big) {
-      f((x[i] - ref[i]) / ref[i]);
+      f(i, (x[i] - ref[i]) / ref[i]);
     }
   }
 }
 
-/// RMS relative difference of G over voxels with G above 1% of the largest.
-inline double rmsRelative(const std::vector<double>& ref, const std::vector<double>& x)
+/// RMS relative difference of G over voxels with G above 1% of the largest
+/// (and, given `keep`, over those of them for which keep(index) holds).
+template<class Keep>
+double rmsRelative(const std::vector<double>& ref, const std::vector<double>& x, Keep&& keep)
 {
   double sum = 0.0;
-  int n = 0;
-  forEachRelative(ref, x, [&](double r) {
-    sum += r * r;
-    ++n;
+  long long n = 0;
+  forEachRelative(ref, x, [&](std::size_t i, double r) {
+    if (keep(i)) {
+      sum += r * r;
+      ++n;
+    }
   });
-  return std::sqrt(sum / std::max(n, 1));
+  return std::sqrt(sum / double(std::max(n, 1LL)));
+}
+
+inline double rmsRelative(const std::vector<double>& ref, const std::vector<double>& x)
+{
+  return rmsRelative(ref, x, [](std::size_t) { return true; });
 }
 
 /// Largest relative difference of G over the same voxels.
 inline double maxRelative(const std::vector<double>& ref, const std::vector<double>& x)
 {
   double worst = 0.0;
-  forEachRelative(ref, x, [&](double r) { worst = std::max(worst, std::abs(r)); });
+  forEachRelative(ref, x, [&](std::size_t, double r) { worst = std::max(worst, std::abs(r)); });
   return worst;
 }
 
