@@ -330,11 +330,14 @@ Vec3 ClusterTree::centroid(Index node) const
 
 double ClusterTree::radius(Index node) const
 {
-  std::array<int, 3> lo, hi;
-  box(node, lo, hi);
+  return radius(node, box(node));
+}
+
+double ClusterTree::radius(Index node, const Box& b) const
+{
   Vec3 extent;
   for (int a = 0; a < 3; ++a) {
-    extent[a] = (hi[a] - lo[a] + 1) * grids_[0].spacing[a];
+    extent[a] = (b.hi[a] - b.lo[a] + 1) * grids_[0].spacing[a];
   }
   if (isPatch(node)) {
     extent[faceAxis(face(node))] = 0.0;
@@ -381,25 +384,20 @@ void ClusterTree::box(Index node, std::array<int, 3>& lo, std::array<int, 3>& hi
   lo[n] = hi[n] = faceIsMax(loc.face) ? dims[n] - 1 : 0;
 }
 
-void ClusterTree::spaceBox(Index node, Vec3& lo, Vec3& hi) const
+void ClusterTree::spaceBox(const Box& b, Vec3& lo, Vec3& hi) const
 {
-  std::array<int, 3> l, h;
-  box(node, l, h);
   const Grid& g = grids_[0];
   for (int a = 0; a < 3; ++a) {
-    lo[a] = g.origin[a] + (l[a] - 0.5) * g.spacing[a];
-    hi[a] = g.origin[a] + (h[a] + 0.5) * g.spacing[a];
+    lo[a] = g.origin[a] + (b.lo[a] - 0.5) * g.spacing[a];
+    hi[a] = g.origin[a] + (b.hi[a] + 0.5) * g.spacing[a];
   }
 }
 
-int ClusterTree::gap(Index a, Index b) const
+int ClusterTree::gap(const Box& a, const Box& b)
 {
-  std::array<int, 3> la, ha, lb, hb;
-  box(a, la, ha);
-  box(b, lb, hb);
   int g = 0;
   for (int k = 0; k < 3; ++k) {
-    g = std::max({ g, lb[k] - ha[k], la[k] - hb[k] });
+    g = std::max({ g, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k] });
   }
   return g;
 }

@@ -133,10 +133,26 @@ public:
   Face face(Index node) const; ///< patch nodes only
   /// Inclusive voxel-index box (patch nodes: the voxels behind them).
   void box(Index node, std::array<int, 3>& lo, std::array<int, 3>& hi) const;
+  /// The same box, for a caller that asks several of the queries below of
+  /// one node (the links' refinement: a box costs two integer divisions).
+  struct Box
+  {
+    std::array<int, 3> lo, hi;
+  };
+  Box box(Index node) const
+  {
+    Box b;
+    box(node, b.lo, b.hi);
+    return b;
+  }
+  /// radius() of a node whose box() is b.
+  double radius(Index node, const Box& b) const;
   /// The box's corners in space (voxel nodes: the faces of its voxels).
-  void spaceBox(Index node, Vec3& lo, Vec3& hi) const;
+  void spaceBox(Index node, Vec3& lo, Vec3& hi) const { spaceBox(box(node), lo, hi); }
+  void spaceBox(const Box& b, Vec3& lo, Vec3& hi) const;
   /// Chebyshev gap between two boxes: 0 when they overlap, 1 when they touch.
-  int gap(Index a, Index b) const;
+  int gap(Index a, Index b) const { return gap(box(a), box(b)); }
+  static int gap(const Box& a, const Box& b);
   /// The voxel grid of a level (its patches are that level's patch nodes).
   const Grid& grid(int level) const { return grids_[level]; }
   const VoxelPyramid& pyramid() const { return pyramid_; }

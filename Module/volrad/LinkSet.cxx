@@ -42,26 +42,33 @@ struct Pair
 /// sigma of a node towards direction w (pointing away from it), for the
 /// error estimate: empty voxels count with viewSigma each, since their views
 /// (G of empty space) come from the same links.
-double directedSigma(const ClusterTree& t, Index n, const Vec3& w, double viewSigma)
+double directedSigma(const ClusterTree& t,
+                     Index n,
+                     const ClusterTree::Box& box,
+                     const Vec3& w,
+                     double viewSigma)
 {
   if (!t.isPatch(n)) {
-    std::array<int, 3> lo, hi;
-    t.box(n, lo, hi);
+    const auto &lo = box.lo, &hi = box.hi;
     const double voxels = double(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
     return std::max(t.sigma(n), viewSigma * voxels);
   }
   return t.sigma(n) * std::max(0.0, faceInwardNormal(t.face(n)).dot(w));
 }
 
-/// Distance from c, inside node n's box, along the unit w to the box's
-/// boundary (0 for patch nodes, which have no inside).
-double exitDistance(const ClusterTree& t, Index n, const Vec3& c, const Vec3& w)
+/// Distance from c, inside node n's box (box), along the unit w to the
+/// box's boundary (0 for patch nodes, which have no inside).
+double exitDistance(const ClusterTree& t,
+                    Index n,
+                    const ClusterTree::Box& box,
+                    const Vec3& c,
+                    const Vec3& w)
 {
   if (t.isPatch(n)) {
     return 0.0;
   }
   Vec3 lo, hi;
-  t.spaceBox(n, lo, hi);
+  t.spaceBox(box, lo, hi);
   double d = std::numeric_limits<double>::infinity();
   for (int a = 0; a < 3; ++a) {
     if (w[a] != 0.0) {
@@ -75,7 +82,7 @@ double exitDistance(const ClusterTree& t, Index n, const Vec3& c, const Vec3& w)
 /// w to n's boundary (0 for patches).
 double insideDepth(const ClusterTree& t, Index n, const Vec3& p, const Vec3& w)
 {
-  return t.isPatch(n) ? 0.0 : t.meanKappaT(n) * exitDistance(t, n, p, w);
+  return t.isPatch(n) ? 0.0 : t.meanKappaT(n) * exitDistance(t, n, t.box(n), p, w);
 }
 
 /// The share of voxel leaf n's extinction that the medium just past the
@@ -754,7 +761,8 @@ LinkSet refineLinks(const ClusterTree& tree,
               continue; // an empty end's views are not asked for
             }
             const bool leafA = tree.isLeaf(a), leafB = tree.isLeaf(b);
-            const int gap = tree.gap(a, b);
+            const ClusterTree::Box boxA = tree.box(a), boxB = tree.box(b);
+            const int gap = ClusterTree::gap(boxA, boxB);
             bool link = false;
             double gamma = 0.0;
             if (gap > opt.nearRadius) {
@@ -772,42 +780,54 @@ LinkSet refineLinks(const ClusterTree& tree,
                 const Vec3 ca = tree.centroid(a), cb = tree.centroid(b);
                 const double r = (cb - ca).norm();
                 const Vec3 w = (cb - ca) / r;
-                const double ra = tree.radius(a), rb = tree.radius(b);
+                const double ra = tree.radius(a, boxA), rb = tree.radius(b, boxB);
                 const double geometric = (ra * ra + rb * rb) / (r * r);
-                const int level = std::max(tree.level(a), tree.level(b));
-                // The size of the exchange the link may get wrong is attenuated
-                // only by the medium between the two boxes (between t0 and t1
-                // on the centroid line), since the line's depth inside a
-                // cluster can hide its lit surface entirely.
-                const double t0 = exitDistance(tree, a, ca, w),
-                             t1 = r - exitDistance(tree, b, cb, -w);
-                double between = 0.0;
-                const VoxelPyramid::Depth d =
-                  tree.pyramid().opticalDepth(ca, cb, level, t0, t1, between);
                 const double ka_ = tree.meanKappaT(a) * ra, kb_ = tree.meanKappaT(b) * rb;
-                const double depthErr = std::min(1.0, 0.5 * (d.upper - d.lower));
-                const double err = std::min(1.0, geometric) + depthErr +
-                                   std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
+                const double size = std::min(1.0, 0.25 * (ka_ * ka_ + kb_ * kb_));
                 const double x = std::max(opt.radiosity[a], opt.radiosity[b]);
-                const double S = directedSigma(tree, a, w, opt.viewSigma) *
-                                 directedSigma(tree, b, -w, opt.viewSigma) * std::exp(-between) /
-                                 (kPi * r * r);
+                const double sigmas = directedSigma(tree, a, boxA, w, opt.viewSigma) *
+                                      directedSigma(tree, b, boxB, -w, opt.viewSigma);
                 double allowed = budget;
                 if ((sa <= 0.0 || sb <= 0.0) && !opt.viewLight.empty()) {
                   const Index view = sa <= 0.0 ? a : b;
                   allowed = std::max(allowed, opt.viewTolerance * double(opt.viewLight[view]));
                 }
-                link = x * S * err <= allowed;
-                if (link) {
-                  // The oracle has charged this link depthErr for its depth
-                  // and left allowed / (x S) - err unspent: the line's depth
-                  // need be no finer than both together.
-                  const double slack = x * S > 0.0 ? allowed / (x * S) - err : 1.0;
-                  gamma = linkGamma(
-                    tree,
-                    a,
-                    b,
-                    std::max(opt.depthTolerance, std::min(kMaxLinkDepthError, depthErr + slack)));
+                // Fine enough whatever the medium between (depthErr <= 1,
+                // exp(-between) <= 1): the oracle's march would not change
+                // the answer, nor the line's tolerance (depthErr + slack >= 1
+                // below), and weak links are decided so.
+                const double errAtMost = std::min(1.0, geometric) + 1.0 + size;
+                if (x * (sigmas / (kPi * r * r)) * errAtMost <= allowed) {
+                  link = true;
+                  gamma =
+                    linkGamma(tree, a, b, std::max(opt.depthTolerance, kMaxLinkDepthError));
+                } else {
+                  const int level = std::max(tree.level(a), tree.level(b));
+                  // The size of the exchange the link may get wrong is
+                  // attenuated only by the medium between the two boxes
+                  // (between t0 and t1 on the centroid line), since the
+                  // line's depth inside a cluster can hide its lit surface
+                  // entirely.
+                  const double t0 = exitDistance(tree, a, boxA, ca, w),
+                               t1 = r - exitDistance(tree, b, boxB, cb, -w);
+                  double between = 0.0;
+                  const VoxelPyramid::Depth d =
+                    tree.pyramid().opticalDepth(ca, cb, level, t0, t1, between);
+                  const double depthErr = std::min(1.0, 0.5 * (d.upper - d.lower));
+                  const double err = std::min(1.0, geometric) + depthErr + size;
+                  const double S = sigmas * std::exp(-between) / (kPi * r * r);
+                  link = x * S * err <= allowed;
+                  if (link) {
+                    // The oracle has charged this link depthErr for its
+                    // depth and left allowed / (x S) - err unspent: the
+                    // line's depth need be no finer than both together.
+                    const double slack = x * S > 0.0 ? allowed / (x * S) - err : 1.0;
+                    gamma = linkGamma(
+                      tree,
+                      a,
+                      b,
+                      std::max(opt.depthTolerance, std::min(kMaxLinkDepthError, depthErr + slack)));
+                  }
                 }
               }
             } else if (leafA && leafB) {
@@ -822,7 +842,8 @@ LinkSet refineLinks(const ClusterTree& tree,
               continue;
             }
             // Split the larger node (a leaf cannot be split).
-            const bool splitA = leafB || (!leafA && tree.radius(a) >= tree.radius(b));
+            const bool splitA =
+              leafB || (!leafA && tree.radius(a, boxA) >= tree.radius(b, boxB));
             if (splitA) {
               const int n = tree.children(a, ka);
               for (int i = 0; i < n; ++i) {
