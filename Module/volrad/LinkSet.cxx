@@ -793,9 +793,11 @@ LinkSet refineLinks(const ClusterTree& tree,
                   allowed = std::max(allowed, opt.viewTolerance * double(opt.viewLight[view]));
                 }
                 // Fine enough whatever the medium between (depthErr <= 1,
-                // exp(-between) <= 1): the oracle's march would not change
-                // the answer, nor the line's tolerance (depthErr + slack >= 1
-                // below), and weak links are decided so.
+                // exp(-between) <= 1; x, sigmas >= 0, and rounding is
+                // monotone): the oracle's march would not change the answer,
+                // nor the line's tolerance (depthErr + slack >= 1 below, to
+                // rounding, far above kMaxLinkDepthError), so such links skip
+                // the march.
                 const double errAtMost = std::min(1.0, geometric) + 1.0 + size;
                 if (x * (sigmas / (kPi * r * r)) * errAtMost <= allowed) {
                   link = true;
