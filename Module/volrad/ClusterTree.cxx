@@ -335,9 +335,10 @@ double ClusterTree::radius(Index node) const
 
 double ClusterTree::radius(Index node, const Box& b) const
 {
+  const auto voxels = b.extent();
   Vec3 extent;
   for (int a = 0; a < 3; ++a) {
-    extent[a] = (b.hi[a] - b.lo[a] + 1) * grids_[0].spacing[a];
+    extent[a] = voxels[a] * grids_[0].spacing[a];
   }
   if (isPatch(node)) {
     extent[faceAxis(face(node))] = 0.0;

@@ -138,6 +138,11 @@ public:
   struct Box
   {
     std::array<int, 3> lo, hi;
+    /// Voxels it spans along each axis.
+    std::array<int, 3> extent() const
+    {
+      return { hi[0] - lo[0] + 1, hi[1] - lo[1] + 1, hi[2] - lo[2] + 1 };
+    }
   };
   Box box(Index node) const
   {

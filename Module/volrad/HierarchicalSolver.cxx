@@ -205,10 +205,9 @@ std::vector<float> viewDirectPower(const ClusterTree& tree, const std::vector<fl
       for (int i = 0; i < k; ++i) {
         m = std::min(m, least[kids[i]]);
       }
-      std::array<int, 3> lo, hi;
-      tree.box(node, lo, hi);
+      const auto e = tree.box(node).extent();
       least[node] = m;
-      d[node] = m * float(hi[0] - lo[0] + 1) * float(hi[1] - lo[1] + 1) * float(hi[2] - lo[2] + 1);
+      d[node] = m * float(e[0]) * float(e[1]) * float(e[2]);
     }
   }
   return d;

@@ -49,8 +49,8 @@ double directedSigma(const ClusterTree& t,
                      double viewSigma)
 {
   if (!t.isPatch(n)) {
-    const auto &lo = box.lo, &hi = box.hi;
-    const double voxels = double(hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1) * (hi[2] - lo[2] + 1);
+    const auto e = box.extent();
+    const double voxels = double(e[0]) * e[1] * e[2];
     return std::max(t.sigma(n), viewSigma * voxels);
   }
   return t.sigma(n) * std::max(0.0, faceInwardNormal(t.face(n)).dot(w));
