@@ -948,22 +948,22 @@ LinkSet refineLinks(const ClusterTree& tree,
     cursor[n].store(out.start[n], std::memory_order_relaxed);
   }
   out.code = GammaCode::forLargest(largest);
-  // The rows are written one slice of nodes at a time, from the links whose
-  // lower end is in the slice, which are freed as they go; the direction
-  // into a later slice waits in that slice's pending list. Freed pages go
-  // back to the system, so that the accepted links and the rows are not all
-  // resident at once. A slice's rows are filled in full 32-bit form (by the
-  // threads at once, each thread's links in turn), each then ordered by
-  // source (so that the order does not depend on the threads), and stored
-  // as steps (LinkSet) in the final arrays, whose pages are faulted in only
-  // where written.
+  // The rows are written one piece of a slice of nodes at a time (below),
+  // from the links whose lower end is in the slice, which are freed as they
+  // go; the direction into a later piece waits in that piece's pending
+  // list. Freed pages go back to the system, so that the accepted links and
+  // the rows are not all resident at once. A piece's rows are filled in
+  // full 32-bit form (by the threads at once, each thread's links in turn),
+  // each then ordered by source (so that the order does not depend on the
+  // threads), and stored as steps (LinkSet) in the final arrays, whose
+  // pages are faulted in only where written.
   const Index total = out.start.back();
   out.step.resize(total);
   out.gamma.resize(total);
   out.farStart.assign(tree.size() + 1, 0);
   std::vector<std::int32_t, UninitialisedAllocator<std::int32_t>> rawSource;
   std::vector<float, UninitialisedAllocator<float>> rawGamma;
-  Index sliceBegin = 0; // the current slice's first entry
+  Index pieceBegin = 0; // the current piece's first entry
   // Per part (thread) of the accepted links, in a cache line of its own: a
   // count shared by the threads was an atomic on one line at every entry.
   struct alignas(64) Written
@@ -972,7 +972,7 @@ LinkSet refineLinks(const ClusterTree& tree,
   };
   std::vector<Written> written(tallies.size());
   auto write = [&](Index into, Index from, float gamma, std::size_t part) {
-    const Index k = cursor[into].fetch_add(1, std::memory_order_relaxed) - sliceBegin;
+    const Index k = cursor[into].fetch_add(1, std::memory_order_relaxed) - pieceBegin;
     rawSource[k] = std::int32_t(from);
     rawGamma[k] = gamma;
     if (++written[part].entries % (std::int64_t(1) << 18) == 0) {
@@ -980,41 +980,103 @@ LinkSet refineLinks(const ClusterTree& tree,
     }
   };
   tbb::enumerable_thread_specific<std::vector<std::pair<std::int32_t, float>>> scratch;
-  // By receiver's slice, per part (thread) of the accepted links: (receiver, source, gamma).
-  std::vector<Sliced<PackedLink>> pending(tallies.size());
-  for (auto& p : pending) {
-    p = Sliced<PackedLink>(std::size_t(S));
-  }
-  std::vector<std::uint32_t> farSteps; // per node of the slice
+  // The rows are written in pieces of about total / kFewestSlices entries:
+  // each slice of nodes is cut where its rows hold more (the clusters'
+  // slices: a coarse cluster has thousands of links, a voxel tens, and one
+  // slice's 32-bit copy of the cloud's cluster rows at 128^3 was a third of
+  // its solve's peak).
+  std::vector<Index> pieceFirst; // each piece's first node, then tree.size()
+  std::vector<int> firstPiece(std::size_t(S) + 1, 0); // per slice
+  const Index pieceEntries = std::max<Index>(1, total / LinkPacking::kFewestSlices);
   for (int j = 0; j < S; ++j) {
+    firstPiece[j] = int(pieceFirst.size());
     const Index n0 = std::min(tree.size(), j * sliceSize),
                 n1 = std::min(tree.size(), (j + 1) * sliceSize);
-    sliceBegin = out.start[n0];
-    decltype(rawSource)().swap(rawSource); // a new, untouched block each slice
+    for (Index n = n0; n < n1; ++n) {
+      if (n == n0 || out.start[n] - out.start[pieceFirst.back()] >= pieceEntries) {
+        pieceFirst.push_back(n);
+      }
+    }
+  }
+  firstPiece[S] = int(pieceFirst.size());
+  pieceFirst.push_back(tree.size());
+  const int P = firstPiece[S];
+  auto pieceOf = [&](Index n) {
+    const int j = packing.sliceOf(n);
+    if (firstPiece[j + 1] - firstPiece[j] == 1) {
+      return firstPiece[j];
+    }
+    return int(std::upper_bound(pieceFirst.begin() + firstPiece[j],
+                                pieceFirst.begin() + firstPiece[j + 1],
+                                n) -
+               pieceFirst.begin()) -
+           1;
+  };
+  // By receiver's piece, per part (thread) of the accepted links: (receiver, source, gamma).
+  std::vector<Sliced<PackedLink>> pending(tallies.size());
+  // The same for the links of a slice in pieces, by their lower end's piece.
+  std::vector<Sliced<PackedLink>> ahead(tallies.size());
+  for (std::size_t p = 0; p < tallies.size(); ++p) {
+    pending[p] = Sliced<PackedLink>(std::size_t(P));
+    ahead[p] = Sliced<PackedLink>(std::size_t(P));
+  }
+  std::vector<std::uint32_t> farSteps; // per node of the piece
+  for (int piece = 0; piece < P; ++piece) {
+    const Index n0 = pieceFirst[piece], n1 = pieceFirst[piece + 1];
+    const int j = packing.sliceOf(n0);
+    pieceBegin = out.start[n0];
+    decltype(rawSource)().swap(rawSource); // a new, untouched block each piece
     decltype(rawGamma)().swap(rawGamma);
-    rawSource.resize(out.start[n1] - sliceBegin);
-    rawGamma.resize(out.start[n1] - sliceBegin);
-    const double p0 = 0.92 + 0.08 * j / S, p1 = 0.92 + 0.08 * (j + 1) / S;
+    rawSource.resize(out.start[n1] - pieceBegin);
+    rawGamma.resize(out.start[n1] - pieceBegin);
+    const double p0 = 0.92 + 0.08 * piece / P, p1 = 0.92 + 0.08 * (piece + 1) / P;
     const double q1 = p0 + 0.4 * (p1 - p0), q2 = p0 + 0.6 * (p1 - p0);
-    forEachInPartsInParallel<true>(
-      slices[j], progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
-        const Index a = packing.row(x, j), b = packing.other(x);
-        const float gamma = packing.gamma(x);
-        write(a, b, gamma, part);
-        const int later = packing.sliceOf(b);
-        if (later == j) {
-          write(b, a, gamma, part);
-        } else {
-          pending[part][later].push_back(packing.pack(b, later, a, gamma));
-        }
-      });
+    // The links whose lower end is in this piece: both directions now, or
+    // the later one waits.
+    auto place = [&](Index a, Index b, float gamma, std::size_t part) {
+      write(a, b, gamma, part);
+      const int later = b < n1 ? piece : pieceOf(b);
+      if (later == piece) {
+        write(b, a, gamma, part);
+      } else {
+        pending[part][later].push_back(packing.packFrom(pieceFirst[later], b, a, gamma));
+      }
+    };
+    if (firstPiece[j + 1] - firstPiece[j] == 1) { // the slice in one piece
+      forEachInPartsInParallel<true>(
+        slices[j], progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
+          place(packing.row(x, j), packing.other(x), packing.gamma(x), part);
+        });
+    } else {
+      // A slice in pieces: its links first go by their lower end's piece
+      // (each still once: the rows of a slice of clusters hold more links
+      // among themselves than one piece's, whose both directions waiting
+      // at once were the peak of the cloud's rows at 128^3).
+      if (piece == firstPiece[j]) {
+        forEachInPartsInParallel<true>(
+          slices[j], progress.sub(p0, p0), [&](const PackedLink& x, std::size_t part) {
+            const Index a = packing.row(x, j);
+            const int q = pieceOf(a);
+            ahead[part][q].push_back(
+              packing.packFrom(pieceFirst[q], a, packing.other(x), packing.gamma(x)));
+          });
+      }
+      std::vector<ChunkedList<PackedLink>*> mine;
+      for (auto& p : ahead) {
+        mine.push_back(&p[piece]);
+      }
+      forEachInPartsInParallel<true>(
+        mine, progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
+          place(packing.rowFrom(n0, x), packing.other(x), packing.gamma(x), part);
+        });
+    }
     std::vector<ChunkedList<PackedLink>*> waiting;
     for (auto& p : pending) {
-      waiting.push_back(&p[j]);
+      waiting.push_back(&p[piece]);
     }
     forEachInPartsInParallel<true>(
       waiting, progress.sub(q1, q2), [&](const PackedLink& x, std::size_t part) {
-        write(packing.row(x, j), packing.other(x), packing.gamma(x), part);
+        write(packing.rowFrom(n0, x), packing.other(x), packing.gamma(x), part);
       });
     // The rows are uninitialised until written: every one must be full.
     for (Index n = n0; n < n1; ++n) {
@@ -1028,7 +1090,7 @@ LinkSet refineLinks(const ClusterTree& tree,
       tbb::parallel_for(tbb::blocked_range<Index>(n0 + b0, n0 + b1, 8), [&](const auto& r) {
         auto& links = scratch.local();
         for (Index b = r.begin(); b != r.end(); ++b) {
-          const Index k0 = out.start[b] - sliceBegin, k1 = out.start[b + 1] - sliceBegin;
+          const Index k0 = out.start[b] - pieceBegin, k1 = out.start[b + 1] - pieceBegin;
           links.clear();
           for (Index k = k0; k < k1; ++k) {
             links.emplace_back(rawSource[k], rawGamma[k]);
@@ -1040,12 +1102,12 @@ LinkSet refineLinks(const ClusterTree& tree,
             rawSource[k] = a;
             const std::int64_t d = std::int64_t(a) - previous;
             if (d < LinkSet::kFarStep) {
-              out.step[sliceBegin + k] = std::uint16_t(d);
+              out.step[pieceBegin + k] = std::uint16_t(d);
             } else {
-              out.step[sliceBegin + k] = LinkSet::kFarStep;
+              out.step[pieceBegin + k] = LinkSet::kFarStep;
               ++farSteps[b - n0];
             }
-            out.gamma[sliceBegin + k] = out.code.encode(links[k - k0].second);
+            out.gamma[pieceBegin + k] = out.code.encode(links[k - k0].second);
             previous = a;
           }
         }
@@ -1060,7 +1122,7 @@ LinkSet refineLinks(const ClusterTree& tree,
       if (farSteps[b - n0] > 0) {
         for (Index k = out.start[b]; k < out.start[b + 1]; ++k) {
           if (out.step[k] == LinkSet::kFarStep) {
-            out.farSource.push_back(rawSource[k - sliceBegin]);
+            out.farSource.push_back(rawSource[k - pieceBegin]);
           }
         }
       }

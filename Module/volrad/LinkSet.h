@@ -182,17 +182,19 @@ struct PackedLink
   std::uint64_t bits;
 };
 
-/// PackedLink's fields: the row's node as its offset in its slice, the other
-/// node, then the top bits of gamma's (positive) float, at least 19 of them:
-/// its 8 exponent bits and 11 of mantissa, all that GammaCode's rounding to
-/// 10 reads, so the rows are those of whole floats. The slices, a power of
-/// two from kFewestSlices, are more in trees too large for that.
+/// PackedLink's fields: the row's node as its offset in its slice (or in a
+/// piece of it), the other node, then the top bits of gamma's (positive)
+/// float, at least 19 of them: its 8 exponent bits and 11 of mantissa, all
+/// that GammaCode's rounding to 10 reads, so the rows are those of whole
+/// floats. The slices, a power of two from kFewestSlices, are more in trees
+/// too large for that.
 struct LinkPacking
 {
   /// The rows are written a slice at a time through a full 32-bit copy of
   /// the slice's rows (refineLinks): with 64 slices, not 16, that copy took
   /// 76 MiB off the peak of the smoke's full-size solve (82 M links), for
-  /// the same rows.
+  /// the same rows. A slice whose rows hold more than 1/kFewestSlices of
+  /// the entries (the clusters') is written in pieces of about that many.
   static constexpr int kFewestSlices = 64;
 
   explicit LinkPacking(Index nodes)
@@ -219,14 +221,21 @@ struct LinkPacking
   /// `slice` is sliceOf(row), which the caller has already (no division here).
   PackedLink pack(Index row, int slice, Index other, float gamma) const
   {
+    return packFrom(Index(slice) * sliceSize, row, other, gamma);
+  }
+  Index row(const PackedLink& x, int slice) const { return rowFrom(Index(slice) * sliceSize, x); }
+  /// The same with the row as its offset from `first`, a node at most
+  /// sliceSize - 1 before it (a part of a slice).
+  PackedLink packFrom(Index first, Index row, Index other, float gamma) const
+  {
     std::uint32_t g;
     std::memcpy(&g, &gamma, sizeof g);
-    return { std::uint64_t(row - Index(slice) * sliceSize) | (std::uint64_t(other) << offsetBits) |
+    return { std::uint64_t(row - first) | (std::uint64_t(other) << offsetBits) |
              (std::uint64_t(g >> (31 - gammaBits)) << (offsetBits + nodeBits)) };
   }
-  Index row(const PackedLink& x, int slice) const
+  Index rowFrom(Index first, const PackedLink& x) const
   {
-    return Index(slice) * sliceSize + Index(x.bits & ((std::uint64_t(1) << offsetBits) - 1));
+    return first + Index(x.bits & ((std::uint64_t(1) << offsetBits) - 1));
   }
   Index other(const PackedLink& x) const
   {

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The link rows (LinkSet.h): every link is stored in the rows of both its
 // ends with the same gamma, each row in increasing order of sources, also
-// where a source is farther than a 16-bit step from the one before it; and
-// gamma's 16-bit code (GammaCode) within its rounding of the value.
+// where a source is farther than a 16-bit step from the one before it and
+// where a slice of nodes is written in pieces; and gamma's 16-bit code
+// (GammaCode) within its rounding of the value.
 #include "TestScenes.h"
 #include "volrad/ClusterTree.h"
 #include "volrad/LinkSet.h"
@@ -40,6 +41,16 @@ TEST(LinkSet, RowsHoldEachLinkBothWaysInOrderAcrossFarSteps)
   ASSERT_GT(links.pairs, 100000);
   EXPECT_EQ(links.start.back(), 2 * links.pairs);
   EXPECT_GT(links.farSource.size(), 0u); // the far steps are exercised
+  // Some slice's rows hold more than their share of the entries (the
+  // clusters'), so that they are written in pieces.
+  const LinkPacking packing(tree.size());
+  Index most = 0;
+  for (int j = 0; j < packing.slices; ++j) {
+    const Index n0 = std::min(tree.size(), j * packing.sliceSize),
+                n1 = std::min(tree.size(), (j + 1) * packing.sliceSize);
+    most = std::max(most, links.start[n1] - links.start[n0]);
+  }
+  EXPECT_GT(most, 2 * links.start.back() / LinkPacking::kFewestSlices);
 
   std::vector<std::vector<std::pair<Index, double>>> rows(tree.size());
   for (Index b = 0; b < tree.size(); ++b) {
@@ -100,7 +111,7 @@ TEST(LinkSet, GammaCodeIsWithinItsRoundingAndKeepsTheOrder)
 TEST(LinkSet, PackedLinksGiveBackTheirNodesAndTheRowsGammaCodes)
 {
   // From a handful of nodes to the 32-bit limit (2^31 - 1, where the slices
-  // multiply): every node, and a gamma whose stored code (GammaCode, rounded
+  // multiply): every node, by its slice or a piece of it, and a gamma whose stored code (GammaCode, rounded
   // from its top 11 mantissa bits) is that of the whole float.
   std::uint64_t state = 12345;
   auto next = [&] { // a 64-bit linear congruential generator
@@ -125,6 +136,12 @@ TEST(LinkSet, PackedLinksGiveBackTheirNodesAndTheRowsGammaCodes)
       ASSERT_LT(slice, p.slices);
       ASSERT_EQ(p.row(x, slice), row) << nodes;
       ASSERT_EQ(p.other(x), other) << nodes;
+      // From a node up to sliceSize - 1 before the row (a piece of a slice).
+      const Index first = row - Index(next() % std::uint64_t(std::min(row + 1, p.sliceSize)));
+      const PackedLink y = p.packFrom(first, row, other, gamma);
+      ASSERT_EQ(p.rowFrom(first, y), row) << nodes;
+      ASSERT_EQ(p.other(y), other) << nodes;
+      ASSERT_EQ(p.gamma(y), p.gamma(x)) << nodes;
       const float back = p.gamma(x);
       ASSERT_LE(back, gamma);
       ASSERT_LE(gamma - back, gamma * std::ldexp(1.0, 8 - p.gammaBits)) << nodes;
