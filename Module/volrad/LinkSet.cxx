@@ -1042,40 +1042,39 @@ LinkSet refineLinks(const ClusterTree& tree,
         pending[part][later].push_back(packing.packFrom(pieceFirst[later], b, a, gamma));
       }
     };
-    if (firstPiece[j + 1] - firstPiece[j] == 1) { // the slice in one piece
-      forEachInPartsInParallel<true>(
-        slices[j], progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
-          place(packing.row(x, j), packing.other(x), packing.gamma(x), part);
-        });
-    } else {
+    // Each part's list of this piece.
+    auto ofPiece = [&](std::vector<Sliced<PackedLink>>& perPart) {
+      std::vector<ChunkedList<PackedLink>*> lists;
+      for (auto& p : perPart) {
+        lists.push_back(&p[piece]);
+      }
+      return lists;
+    };
+    const bool whole = firstPiece[j + 1] - firstPiece[j] == 1; // the slice in one piece
+    if (!whole && piece == firstPiece[j]) {
       // A slice in pieces: its links first go by their lower end's piece
       // (each still once: the rows of a slice of clusters hold more links
       // among themselves than one piece's, whose both directions waiting
       // at once were the peak of the cloud's rows at 128^3).
-      if (piece == firstPiece[j]) {
-        forEachInPartsInParallel<true>(
-          slices[j], progress.sub(p0, p0), [&](const PackedLink& x, std::size_t part) {
-            const Index a = packing.row(x, j);
-            const int q = pieceOf(a);
-            ahead[part][q].push_back(
-              packing.packFrom(pieceFirst[q], a, packing.other(x), packing.gamma(x)));
-          });
-      }
-      std::vector<ChunkedList<PackedLink>*> mine;
-      for (auto& p : ahead) {
-        mine.push_back(&p[piece]);
-      }
       forEachInPartsInParallel<true>(
-        mine, progress.sub(p0, q1), [&](const PackedLink& x, std::size_t part) {
-          place(packing.rowFrom(n0, x), packing.other(x), packing.gamma(x), part);
+        slices[j], progress.sub(p0, p0), [&](const PackedLink& x, std::size_t part) {
+          const Index a = packing.row(x, j);
+          const int q = pieceOf(a);
+          ahead[part][q].push_back(
+            packing.packFrom(pieceFirst[q], a, packing.other(x), packing.gamma(x)));
         });
     }
-    std::vector<ChunkedList<PackedLink>*> waiting;
-    for (auto& p : pending) {
-      waiting.push_back(&p[piece]);
-    }
+    // (A whole slice's first node is n0: its links' rows are rowFrom(n0, x).)
+    forEachInPartsInParallel<true>(whole ? slices[j] : ofPiece(ahead),
+                                   progress.sub(p0, q1),
+                                   [&](const PackedLink& x, std::size_t part) {
+                                     place(packing.rowFrom(n0, x),
+                                           packing.other(x),
+                                           packing.gamma(x),
+                                           part);
+                                   });
     forEachInPartsInParallel<true>(
-      waiting, progress.sub(q1, q2), [&](const PackedLink& x, std::size_t part) {
+      ofPiece(pending), progress.sub(q1, q2), [&](const PackedLink& x, std::size_t part) {
         write(packing.rowFrom(n0, x), packing.other(x), packing.gamma(x), part);
       });
     // The rows are uninitialised until written: every one must be full.
