@@ -65,26 +65,32 @@ ExchangeElements makeExchangeElements(const Scene& scene, int channel)
 {
   ExchangeElements el;
   const Index nv = scene.grid.voxelCount();
+  // At most two elements a voxel (full and front side) and the patches.
+  const Index most = 2 * nv + scene.grid.patchCount();
+  if (most > Index(std::numeric_limits<ExchangeElements::Number>::max())) {
+    throw Error("too many voxels for 32-bit element numbers (" + std::to_string(nv) +
+                " voxels and " + std::to_string(scene.grid.patchCount()) + " wall patches)");
+  }
   el.full.assign(nv, -1);
   el.front.assign(nv, -1);
   for (Index v = 0; v < nv; ++v) {
     if (scene.kappaTAt(v, channel) > 0.0) {
-      el.full[v] = el.fullCount++;
+      el.full[v] = ExchangeElements::Number(el.fullCount++);
     }
   }
   el.patchCount = scene.grid.patchCount();
   for (Index v = 0; v < nv; ++v) {
     if (el.full[v] >= 0 && needsFrontSide(scene, v)) {
-      el.front[v] = el.partitionSize() + el.frontCount++;
+      el.front[v] = ExchangeElements::Number(el.partitionSize() + el.frontCount++);
     }
   }
   el.voxelOf.assign(el.size(), -1);
   for (Index v = 0; v < nv; ++v) {
     if (el.full[v] >= 0) {
-      el.voxelOf[el.full[v]] = v;
+      el.voxelOf[el.full[v]] = ExchangeElements::Number(v);
     }
     if (el.front[v] >= 0) {
-      el.voxelOf[el.front[v]] = v;
+      el.voxelOf[el.front[v]] = ExchangeElements::Number(v);
     }
   }
   return el;
@@ -115,8 +121,7 @@ ExchangeAreas computeExchangeAreas(const Scene& scene,
                                    const ExchangeOptions& options,
                                    const ProgressRange& progress)
 {
-  if (q.voxelPointsPerAxis < 1 || q.voxelDirections < 1 || q.patchPointsPerAxis < 1 ||
-      q.patchDirections < 1) {
+  if (!q.exchangeCountsValid()) {
     throw Error("quadrature settings must all be >= 1");
   }
   const Grid& g = scene.grid;

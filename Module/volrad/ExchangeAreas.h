@@ -34,6 +34,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <vector>
 
 namespace volrad {
@@ -42,9 +43,12 @@ namespace volrad {
 /// first `partitionSize()` elements partition space.
 struct ExchangeElements
 {
-  std::vector<Index> full;    ///< voxel -> element, -1 where kappa_t = 0
-  std::vector<Index> front;   ///< voxel -> element, -1 where no front side is needed
-  std::vector<Index> voxelOf; ///< element -> voxel (full and front sides), -1 for patches
+  /// Elements and voxels are numbered in 32 bits (makeExchangeElements
+  /// refuses more): these per-voxel maps were 0.4 GB in 64 bits at 256^3.
+  using Number = std::int32_t;
+  std::vector<Number> full;    ///< voxel -> element, -1 where kappa_t = 0
+  std::vector<Number> front;   ///< voxel -> element, -1 where no front side is needed
+  std::vector<Number> voxelOf; ///< element -> voxel (full and front sides), -1 for patches
   Index fullCount = 0, patchCount = 0, frontCount = 0;
 
   Index patchElement(Index patch) const { return fullCount + patch; }

@@ -70,9 +70,10 @@ FarField::FarField(const Scene& scene,
   , fronts_(near.elements.frontCount > 0)
 {
   const Index nodes = tree.size();
-  centroid_.resize(nodes);
-  forEach(nodes, [&](Index k) { centroid_[k] = tree.centroid(k).cast<float>(); });
   const Index nv = tree.grid(0).voxelCount();
+  voxels_ = nv;
+  centroid_.resize(nodes - nv);
+  forEach(nodes - nv, [&](Index k) { centroid_[k] = tree.centroid(nv + k).cast<float>(); });
   clusters_ = tree.voxelNode(tree.levels() - 1, 0) + 1 - nv;
   slopeLimit_.resize(clusters_);
   forEach(clusters_, [&](Index c) { slopeLimit_[c] = float(1.0 / tree.radius(nv + c)); });

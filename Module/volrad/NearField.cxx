@@ -170,6 +170,34 @@ Index classElement(const Grid& g,
   return el.patchElement(g.patchIndex(f, u[ax[0]], u[ax[1]]));
 }
 
+/// An element's place relative to voxel c: its face (-1: a voxel's full
+/// side) and its voxel's offset; none past the box of radius r (a sliver
+/// from round-off).
+using Place = std::pair<int, std::array<int, 3>>;
+bool placeOfElement(const Grid& g,
+                    const ExchangeElements& el,
+                    int r,
+                    Index e,
+                    const std::array<int, 3>& c,
+                    Place& out)
+{
+  const bool patch = el.isPatch(e);
+  const auto u = g.ijk(patch ? g.patchVoxel(e - el.fullCount) : el.voxelOf[e]);
+  out = { patch ? int(g.patchLocation(e - el.fullCount).face) : -1,
+          { u[0] - c[0], u[1] - c[1], u[2] - c[2] } };
+  return std::max({ std::abs(out.second[0]), std::abs(out.second[1]), std::abs(out.second[2]) }) <=
+         r;
+}
+
+std::vector<ClassEntry> toEntries(const std::map<Place, double>& m)
+{
+  std::vector<ClassEntry> out;
+  for (const auto& [place, value] : m) {
+    out.push_back({ place.first, place.second, value });
+  }
+  return out;
+}
+
 double raysPerSurface(const QuadratureSettings& q, const Grid& g)
 {
   const Vec3& h = g.spacing;
@@ -257,9 +285,121 @@ std::size_t NearField::bytes() const
 {
   return stencil.size() * sizeof(float) + extraStart.size() * sizeof(Index) +
          extraColumn.size() * (sizeof(Column) + sizeof(float)) + far.size() * sizeof(double) +
-         viewStart.size() * sizeof(Index) +
-         viewColumn.size() * (sizeof(Column) + sizeof(float)) +
-         (elements.full.size() + elements.front.size() + elements.voxelOf.size()) * sizeof(Index);
+         views.bytes() + (elements.full.size() + elements.front.size() + elements.voxelOf.size()) *
+           sizeof(ExchangeElements::Number);
+}
+
+std::size_t ViewRows::bytes() const
+{
+  return start.size() * sizeof(Index) +
+         column.size() * (sizeof(ExchangeElements::Number) + sizeof(float));
+}
+
+namespace {
+
+void checkOptions(const NearFieldOptions& opt)
+{
+  if (opt.radius < 0) {
+    throw Error("the near-field radius must be >= 0");
+  }
+  for (const QuadratureSettings* q : { &opt.quadrature, &opt.homogeneousQuadrature }) {
+    if (!q->exchangeCountsValid()) {
+      throw Error("quadrature settings must all be >= 1");
+    }
+  }
+}
+
+} // namespace
+
+ViewRows computeViewRows(const Scene& scene,
+                         int channel,
+                         const ExchangeElements& el,
+                         const NearFieldOptions& opt,
+                         const ProgressRange& progress)
+{
+  checkOptions(opt);
+  const int r = opt.radius;
+  const Grid& g = scene.grid;
+  const Index nv = g.voxelCount();
+  if (Index(el.full.size()) != nv) {
+    throw Error("view rows: the elements are not of this scene's grid");
+  }
+  const ChannelMedium medium(scene, channel);
+  // Views of the empty voxels next to elements. Those whose box is all
+  // empty see only walls: one row per row class.
+  TripletLists views;
+  const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
+  std::vector<std::int32_t> sharedView(opt.reuseHomogeneous ? nv : 0, -1);
+  std::vector<Index> viewRepresentatives;
+  if (!sharedView.empty()) {
+    std::map<RowClass, std::int32_t> classes;
+    RowClass k;
+    for (Index v = 0; v < nv; ++v) {
+      if (el.full[v] < 0 && rowClass(g, medium.kappaT, el, v, r, -1, k)) {
+        sharedView[v] = joinClass(classes, k, v, viewRepresentatives);
+      }
+    }
+  }
+  auto gatherView = [&](Index v, auto&& sink) {
+    gatherVoxelView(medium, el, v, viewDirs, opt.quadrature, false, neighbourhood(g, v, r), sink);
+  };
+  std::vector<std::vector<ClassEntry>> sharedViews(viewRepresentatives.size());
+  tbb::parallel_for(Index(0), Index(viewRepresentatives.size()), [&](Index k) {
+    const Index v = viewRepresentatives[k];
+    const auto c = g.ijk(v);
+    std::map<Place, double> row;
+    Place at;
+    gatherView(v, [&](Index e, double p, bool) {
+      if (placeOfElement(g, el, r, e, c, at)) {
+        row[at] += p;
+      }
+    });
+    sharedViews[k] = toEntries(row);
+  });
+  // In blocks, with a progress report (and a chance to abort) after each:
+  // the empty voxels around a head or a cloud are many.
+  progress.sub(0.0, 0.99).forBlocks(nv, 256, 1024, [&](Index b0, Index b1) {
+    tbb::parallel_for(b0, b1, [&](Index v) {
+      if (el.full[v] >= 0) {
+        return;
+      }
+      const auto c = g.ijk(v);
+      bool seesSomething = false;
+      for (int dz = -r; dz <= r && !seesSomething; ++dz) {
+        for (int dy = -r; dy <= r && !seesSomething; ++dy) {
+          for (int dx = -r; dx <= r && !seesSomething; ++dx) {
+            const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
+            if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
+              continue;
+            }
+            // An element, or a boundary voxel: the patches behind it are near.
+            seesSomething = el.full[g.index(i, j, k)] >= 0 || i == 0 || j == 0 || k == 0 ||
+                            i == g.dims[0] - 1 || j == g.dims[1] - 1 || k == g.dims[2] - 1;
+          }
+        }
+      }
+      if (!seesSomething) {
+        return;
+      }
+      if (!sharedView.empty() && sharedView[v] >= 0) {
+        auto& local = views.local();
+        for (const ClassEntry& x : sharedViews[sharedView[v]]) {
+          local.push_back({ v, classElement(g, el, c, x), x.value });
+        }
+        return;
+      }
+      std::map<Index, double> row;
+      gatherView(v, [&](Index e, double p, bool) { row[e] += p; });
+      auto& local = views.local();
+      for (const auto& [e, w] : row) {
+        local.push_back({ v, e, w });
+      }
+    });
+  });
+  ViewRows out;
+  toRows(gatherTriplets(views), nv, out.start, out.column, out.value);
+  progress.report(1.0);
+  return out;
 }
 
 NearField computeNearField(const Scene& scene,
@@ -267,31 +407,15 @@ NearField computeNearField(const Scene& scene,
                            const NearFieldOptions& opt,
                            const ProgressRange& progress)
 {
+  checkOptions(opt);
   const int r = opt.radius;
-  if (r < 0) {
-    throw Error("the near-field radius must be >= 0");
-  }
-  for (const QuadratureSettings* q : { &opt.quadrature, &opt.homogeneousQuadrature }) {
-    if (q->voxelPointsPerAxis < 1 || q->voxelDirections < 1 || q->patchPointsPerAxis < 1 ||
-        q->patchDirections < 1) {
-      throw Error("quadrature settings must all be >= 1");
-    }
-  }
   const Grid& g = scene.grid;
   const ChannelMedium medium(scene, channel);
   NearField out;
   out.radius = r;
-  if (g.voxelCount() > Index(std::numeric_limits<NearField::Column>::max())) {
-    throw Error("too many voxels for the near field (" + std::to_string(g.voxelCount()) +
-                ", at most " + std::to_string(std::numeric_limits<NearField::Column>::max()) + ")");
-  }
   out.elements = makeExchangeElements(scene, channel);
   const ExchangeElements& el = out.elements;
   const Index nv = g.voxelCount(), n = el.size();
-  if (n > Index(std::numeric_limits<NearField::Column>::max())) {
-    throw Error("too many elements for the near field (" + std::to_string(n) + ", at most " +
-                std::to_string(std::numeric_limits<NearField::Column>::max()) + ")");
-  }
   const int width = out.stencilSize();
   out.stencil.assign(std::size_t(el.fullCount) * width, 0.f);
 
@@ -334,27 +458,9 @@ NearField computeNearField(const Scene& scene,
       }
     }
   }
-  // An element's place relative to voxel c: its face (-1: a voxel's full
-  // side) and its voxel's offset; none past the box (a sliver from round-off).
-  using Place = std::pair<int, std::array<int, 3>>;
-  auto placeOf = [&](Index e, const std::array<int, 3>& c, Place& out) {
-    const bool patch = el.isPatch(e);
-    const auto u = g.ijk(patch ? g.patchVoxel(e - el.fullCount) : el.voxelOf[e]);
-    out = { patch ? int(g.patchLocation(e - el.fullCount).face) : -1,
-            { u[0] - c[0], u[1] - c[1], u[2] - c[2] } };
-    return std::max(
-             { std::abs(out.second[0]), std::abs(out.second[1]), std::abs(out.second[2]) }) <= r;
-  };
   std::vector<double> sharedRows(representatives.size() * width, 0.0);
   std::vector<std::vector<ClassEntry>> sharedPatches(representatives.size()),
     sharedPatchRows(patchRepresentatives.size());
-  auto toEntries = [](const std::map<Place, double>& m) {
-    std::vector<ClassEntry> out;
-    for (const auto& [place, value] : m) {
-      out.push_back({ place.first, place.second, value });
-    }
-    return out;
-  };
   tbb::parallel_for(Index(0), Index(representatives.size()), [&](Index k) {
     const Index v = representatives[k];
     const auto c = g.ijk(v);
@@ -367,7 +473,7 @@ NearField computeNearField(const Scene& scene,
                          opt.homogeneousQuadrature,
                          neighbourhood(g, v, r),
                          [&](Index e, double p, bool) {
-                           if (!placeOf(e, c, at)) {
+                           if (!placeOfElement(g, el, r, e, c, at)) {
                              return;
                            }
                            if (at.first >= 0) {
@@ -385,7 +491,7 @@ NearField computeNearField(const Scene& scene,
     Place at;
     gatherPatch(
       medium, el, p, opt.quadrature, neighbourhood(g, g.patchVoxel(p), r), [&](Index e, double w) {
-        if (placeOf(e, c, at)) {
+        if (placeOfElement(g, el, r, e, c, at)) {
           row[at] += w;
         }
       });
@@ -625,79 +731,9 @@ NearField computeNearField(const Scene& scene,
   }
   progress.report(0.9);
 
-  // Views of the empty voxels next to elements. Those whose box is all
-  // empty see only walls: one row per row class.
-  TripletLists views;
-  const auto viewDirs = fibonacciSphere(8 * opt.quadrature.voxelDirections);
-  std::vector<std::int32_t> sharedView(opt.reuseHomogeneous && opt.emptyViews ? nv : 0, -1);
-  std::vector<Index> viewRepresentatives;
-  if (!sharedView.empty()) {
-    std::map<RowClass, std::int32_t> classes;
-    RowClass k;
-    for (Index v = 0; v < nv; ++v) {
-      if (el.full[v] < 0 && rowClass(g, medium.kappaT, el, v, r, -1, k)) {
-        sharedView[v] = joinClass(classes, k, v, viewRepresentatives);
-      }
-    }
+  if (opt.emptyViews) {
+    out.views = computeViewRows(scene, channel, el, opt, progress.sub(0.9, 1.0));
   }
-  auto gatherView = [&](Index v, auto&& sink) {
-    gatherVoxelView(medium, el, v, viewDirs, opt.quadrature, false, neighbourhood(g, v, r), sink);
-  };
-  std::vector<std::vector<ClassEntry>> sharedViews(viewRepresentatives.size());
-  tbb::parallel_for(Index(0), Index(viewRepresentatives.size()), [&](Index k) {
-    const Index v = viewRepresentatives[k];
-    const auto c = g.ijk(v);
-    std::map<Place, double> row;
-    Place at;
-    gatherView(v, [&](Index e, double p, bool) {
-      if (placeOf(e, c, at)) {
-        row[at] += p;
-      }
-    });
-    sharedViews[k] = toEntries(row);
-  });
-  // In blocks, with a progress report (and a chance to abort) after each:
-  // the empty voxels around a head or a cloud are many.
-  progress.sub(0.9, 0.99).forBlocks(nv, 256, 1024, [&](Index b0, Index b1) {
-    tbb::parallel_for(b0, b1, [&](Index v) {
-      if (el.full[v] >= 0 || !opt.emptyViews) {
-        return;
-      }
-      const auto c = g.ijk(v);
-      bool seesSomething = false;
-      for (int dz = -r; dz <= r && !seesSomething; ++dz) {
-        for (int dy = -r; dy <= r && !seesSomething; ++dy) {
-          for (int dx = -r; dx <= r && !seesSomething; ++dx) {
-            const int i = c[0] + dx, j = c[1] + dy, k = c[2] + dz;
-            if (i < 0 || j < 0 || k < 0 || i >= g.dims[0] || j >= g.dims[1] || k >= g.dims[2]) {
-              continue;
-            }
-            // An element, or a boundary voxel: the patches behind it are near.
-            seesSomething = el.full[g.index(i, j, k)] >= 0 || i == 0 || j == 0 || k == 0 ||
-                            i == g.dims[0] - 1 || j == g.dims[1] - 1 || k == g.dims[2] - 1;
-          }
-        }
-      }
-      if (!seesSomething) {
-        return;
-      }
-      if (!sharedView.empty() && sharedView[v] >= 0) {
-        auto& local = views.local();
-        for (const ClassEntry& x : sharedViews[sharedView[v]]) {
-          local.push_back({ v, classElement(g, el, c, x), x.value });
-        }
-        return;
-      }
-      std::map<Index, double> row;
-      gatherView(v, [&](Index e, double p, bool) { row[e] += p; });
-      auto& local = views.local();
-      for (const auto& [e, w] : row) {
-        local.push_back({ v, e, w });
-      }
-    });
-  });
-  const std::vector<Triplet> viewRows = gatherTriplets(views);
-  toRows(viewRows, nv, out.viewStart, out.viewColumn, out.viewValue);
   progress.report(1.0);
   return out;
 }

@@ -43,12 +43,22 @@ struct NearFieldOptions
   bool emptyViews = true;
 };
 
+/// View rows of voxels that are not elements (kappa_t = 0) but see
+/// elements inside their box: G = row . x over element radiosities.
+struct ViewRows
+{
+  std::vector<Index> start; ///< per voxel + 1
+  std::vector<ExchangeElements::Number> column;
+  std::vector<float> value;
+  std::size_t bytes() const;
+};
+
 struct NearField
 {
-  /// An element's number in the rows' columns: 32 bits (computeNearField
-  /// refuses more elements), a third less than 64-bit columns beside the
-  /// 32-bit values.
-  using Column = std::int32_t;
+  /// An element's number in the rows' columns: 32 bits
+  /// (makeExchangeElements refuses more elements), a third less than 64-bit
+  /// columns beside the 32-bit values.
+  using Column = ExchangeElements::Number;
 
   int radius = 1;
   ExchangeElements elements;
@@ -67,11 +77,8 @@ struct NearField
   /// Per element: its row target less its near row over the partition
   /// (full sides and patches), >= 0: the exchange links must carry.
   std::vector<double> far;
-  /// View rows of voxels that are not elements (kappa_t = 0) but see
-  /// elements inside their box: G = row . x over element radiosities.
-  std::vector<Index> viewStart; ///< per voxel + 1
-  std::vector<Column> viewColumn;
-  std::vector<float> viewValue;
+  /// With NearFieldOptions::emptyViews, the views of the empty voxels.
+  ViewRows views;
 
   static int stencilSizeFor(int r) { return (2 * r + 1) * (2 * r + 1) * (2 * r + 1); }
   /// Offsets stored per full side: (0, 0, 0) and those after it.
@@ -106,5 +113,15 @@ NearField computeNearField(const Scene& scene,
                            int channel,
                            const NearFieldOptions& options,
                            const ProgressRange& progress = ProgressRange());
+
+/// The views of the empty voxels next to the elements (or to the walls),
+/// whatever options.emptyViews says: computeNearField's with it, and on
+/// their own for a solve that needs them only for its fields, after the
+/// memory of its links is free.
+ViewRows computeViewRows(const Scene& scene,
+                         int channel,
+                         const ExchangeElements& elements,
+                         const NearFieldOptions& options,
+                         const ProgressRange& progress = ProgressRange());
 
 } // namespace volrad

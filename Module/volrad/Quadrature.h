@@ -29,6 +29,12 @@ struct QuadratureSettings
   int pointLightRaysPerVoxel = 64;
   /// Seed of every random stream (rotations, jitter): same seed, same result.
   std::uint64_t seed = 0x766f6c726164ULL;
+  /// The exchange areas' counts (voxel and patch points and directions) all >= 1.
+  bool exchangeCountsValid() const
+  {
+    return voxelPointsPerAxis >= 1 && voxelDirections >= 1 && patchPointsPerAxis >= 1 &&
+           patchDirections >= 1;
+  }
 };
 
 } // namespace volrad

@@ -193,7 +193,7 @@ TEST(NearField, RowsSharedAlongTheWallsMatchTheirOwnQuadrature)
       worstElement, difference(x, rowOf(b.extraStart, b.extraColumn, b.extraValue, e)) / target);
   }
   for (Index v = 0; v < g.voxelCount(); ++v) {
-    const auto x = rowOf(a.viewStart, a.viewColumn, a.viewValue, v);
+    const auto x = rowOf(a.views.start, a.views.column, a.views.value, v);
     double sum = 0.0;
     for (const auto& [c, w] : x) {
       sum += w;
@@ -201,7 +201,7 @@ TEST(NearField, RowsSharedAlongTheWallsMatchTheirOwnQuadrature)
     if (sum > 0.0) {
       ++views;
       worstView =
-        std::max(worstView, difference(x, rowOf(b.viewStart, b.viewColumn, b.viewValue, v)) / sum);
+        std::max(worstView, difference(x, rowOf(b.views.start, b.views.column, b.views.value, v)) / sum);
     }
   }
   std::printf("[measured] rows shared along the walls vs each one's own quadrature: worst "
@@ -235,8 +235,8 @@ TEST(NearField, WithoutEmptyViewsEmptySpaceCostsNothing)
   NearFieldOptions sparse;
   sparse.emptyViews = false;
   const NearField without = computeNearField(s, 0, sparse);
-  EXPECT_GT(with.viewColumn.size(), 0u); // the empty voxels next to the medium see it
-  EXPECT_EQ(without.viewColumn.size(), 0u);
+  EXPECT_GT(with.views.column.size(), 0u); // the empty voxels next to the medium see it
+  EXPECT_EQ(without.views.column.size(), 0u);
   EXPECT_EQ(without.stencil.size(),
             std::size_t(without.elements.fullCount) * without.stencilHalf());
   EXPECT_EQ(without.elements.fullCount, s.grid.voxelCount() / 2);
@@ -244,4 +244,12 @@ TEST(NearField, WithoutEmptyViewsEmptySpaceCostsNothing)
   EXPECT_EQ(without.extraValue, with.extraValue);
   EXPECT_EQ(without.far, with.far);
   EXPECT_LT(without.bytes(), with.bytes());
+  // The views on their own (a solve computes them after its links) are the
+  // near field's.
+  const ViewRows alone = computeViewRows(s, 0, without.elements, sparse);
+  EXPECT_EQ(alone.start, with.views.start);
+  EXPECT_EQ(alone.column, with.views.column);
+  EXPECT_EQ(alone.value, with.views.value);
+  EXPECT_THROW(computeViewRows(cubeScene(4), 0, without.elements, sparse), Error);
+
 }
