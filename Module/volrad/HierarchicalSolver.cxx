@@ -448,7 +448,7 @@ Solution solveHierarchical(const Scene& scene,
   nearOptions.radius = opt.nearRadius;
   nearOptions.quadrature = opt.quadrature;
   // The empty voxels' views serve only the fields: they are computed once
-  // the links are gone (at 256^3 the cloud's were 0.3 GB beside them).
+  // the links are gone (at 256^3 the cloud's, about 0.3 GB, were held beside them).
   nearOptions.emptyViews = false;
   // Large grids: fewer lines per heterogeneous voxel (homogeneous
   // neighbourhoods keep the fine shared quadrature).

@@ -309,22 +309,16 @@ void checkOptions(const NearFieldOptions& opt)
   }
 }
 
-} // namespace
-
-ViewRows computeViewRows(const Scene& scene,
-                         int channel,
-                         const ExchangeElements& el,
-                         const NearFieldOptions& opt,
-                         const ProgressRange& progress)
+/// computeViewRows with the channel's medium given: computeNearField's own,
+/// not a second copy of its extinction.
+ViewRows viewRows(const ChannelMedium& medium,
+                  const ExchangeElements& el,
+                  const NearFieldOptions& opt,
+                  const ProgressRange& progress)
 {
-  checkOptions(opt);
   const int r = opt.radius;
-  const Grid& g = scene.grid;
+  const Grid& g = medium.scene.grid;
   const Index nv = g.voxelCount();
-  if (Index(el.full.size()) != nv) {
-    throw Error("view rows: the elements are not of this scene's grid");
-  }
-  const ChannelMedium medium(scene, channel);
   // Views of the empty voxels next to elements. Those whose box is all
   // empty see only walls: one row per row class.
   TripletLists views;
@@ -400,6 +394,21 @@ ViewRows computeViewRows(const Scene& scene,
   toRows(gatherTriplets(views), nv, out.start, out.column, out.value);
   progress.report(1.0);
   return out;
+}
+
+} // namespace
+
+ViewRows computeViewRows(const Scene& scene,
+                         int channel,
+                         const ExchangeElements& el,
+                         const NearFieldOptions& opt,
+                         const ProgressRange& progress)
+{
+  checkOptions(opt);
+  if (Index(el.full.size()) != scene.grid.voxelCount()) {
+    throw Error("view rows: the elements are not of this scene's grid");
+  }
+  return viewRows(ChannelMedium(scene, channel), el, opt, progress);
 }
 
 NearField computeNearField(const Scene& scene,
@@ -732,7 +741,7 @@ NearField computeNearField(const Scene& scene,
   progress.report(0.9);
 
   if (opt.emptyViews) {
-    out.views = computeViewRows(scene, channel, el, opt, progress.sub(0.9, 1.0));
+    out.views = viewRows(medium, el, opt, progress.sub(0.9, 1.0));
   }
   progress.report(1.0);
   return out;
