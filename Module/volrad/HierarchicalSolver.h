@@ -12,7 +12,8 @@
 /// every receiver gathers what its partners shoot), each receiver's self
 /// term taken implicitly; the sweeps stop when the largest unshot radiosity
 /// dQ_max, relative to each element's radiosity and with the tail the
-/// convergence rate promises, falls below epsilon.
+/// convergence rate promises, falls below epsilon, and the unshot power
+/// below epsilon of the power first shot.
 /// Links are refined twice: from the emission and direct light, then again
 /// from the first solution, which then continues with the finer links.
 ///
@@ -43,7 +44,10 @@ struct HierarchicalOptions
   /// Stop when every element's unshot radiosity, times the geometric tail
   /// the observed convergence rate still promises (rate / (1 - rate)), is
   /// below epsilon times its radiosity (plus 1e-3 of the largest, so that
-  /// dark elements do not rule). Links are refined until the power a link
+  /// dark elements do not rule), and the power still unshot (BiCGSTAB: the
+  /// residual's) is below epsilon of the power first shot (the emission and
+  /// the direct light's first scattering): the share of the light whose
+  /// absorption or escape the fields would still miss. Links are refined until the power a link
   /// may carry wrongly is below linkTolerance times the total power leaving
   /// all elements; by default linkTolerance = 3e-4 epsilon. A view of empty
   /// space (a link whose end holds no medium: only that voxel's G) is also
