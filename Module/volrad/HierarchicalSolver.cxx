@@ -102,13 +102,20 @@ struct ChannelOperator
   Vector gain;                   // c / (1 - c S_self): the self term implicit
   const FarField* far = nullptr; // shared by the channels of one geometry
 
-  /// The power of radiosities v, |v| weighed by each element's power per
-  /// unit radiosity (its exchange row's target).
+  /// The power of radiosities v in the equations' own terms: |v| times
+  /// each element's power per unit radiosity (its exchange row's target)
+  /// times 1 - c S_self = 1 / (1 + gain S_self), since the self term is
+  /// implicit (x0 and the residuals are the zonal equations' divided by
+  /// it). Of x0, the power first shot; of a residual, the power the
+  /// energy balance misses. Without the factor a thick, high-albedo voxel
+  /// (1 - c S_self down to 0.01) would count a hundred times its share.
   double power(const Vector& v) const
   {
     const ExchangeElements& el = near.elements;
     return reduceSum(v.size(), [&](Index e) {
-      return v[e] != 0.0 ? std::abs(v[e]) * exchangeRowTarget(scene, ch, el, e) : 0.0;
+      return v[e] != 0.0 ? std::abs(v[e]) * exchangeRowTarget(scene, ch, el, e) /
+                             (1.0 + gain[e] * near.diagonal(e))
+                         : 0.0;
     });
   }
 
@@ -252,9 +259,15 @@ struct IterationState
   /// The power of v (what is still unshot, or the residual) relative to
   /// it: the share of the light whose absorption or escape the fields
   /// would still miss, the energy balance's residual.
+  /// (NaN when the powers are not finite: the iterations then stop,
+  /// unconverged, instead of sweeping on to maxIterations.)
   double unshotShare(const ChannelOperator& op, const Vector& v) const
   {
-    return firstPower > 0.0 ? op.power(v) / firstPower : 0.0;
+    if (firstPower == 0.0) {
+      return 0.0; // no light: nothing to shoot
+    }
+    return std::isfinite(firstPower) ? op.power(v) / firstPower
+                                     : std::numeric_limits<double>::quiet_NaN();
   }
   long long iterations = 0, shots = 0;
   bool converged = false;
@@ -289,6 +302,9 @@ bool shoot(const ChannelOperator& op,
     // (a geometric tail of the observed contraction ratio); and the
     // power still unshot, which the energy balance misses.
     const double tail = ratio < 1.0 ? std::max(1.0, ratio / (1.0 - ratio)) : 1e30;
+    if (!std::isfinite(share)) {
+      return true; // not converged, and no Krylov solve will mend it
+    }
     if (previous * tail <= epsilon && share <= epsilon) {
       s.converged = true;
       return true;
@@ -352,6 +368,9 @@ void krylov(const ChannelOperator& op,
     const double res = s.change(r), share = s.unshotShare(op, r);
     report.dQmaxHistory.push_back(res);
     s.reportChange(std::max(res, share), epsilon, progress);
+    if (!std::isfinite(share)) {
+      break; // not converged
+    }
     if (res <= epsilon && share <= epsilon) {
       s.converged = true;
       break;
@@ -370,8 +389,11 @@ void krylov(const ChannelOperator& op,
     }
     r -= alpha * v; // s
     s.iterations += 1;
-    if (s.change(r) <= epsilon && s.unshotShare(op, r) <= epsilon) {
-      continue;
+    const double half = s.change(r);
+    if (half <= epsilon && s.unshotShare(op, r) <= epsilon) {
+      report.dQmaxHistory.push_back(half);
+      s.converged = true;
+      break;
     }
     const Vector sh = op.nearSeries(r);
     const Vector t = A(sh);

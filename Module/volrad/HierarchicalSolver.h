@@ -44,10 +44,11 @@ struct HierarchicalOptions
   /// Stop when every element's unshot radiosity, times the geometric tail
   /// the observed convergence rate still promises (rate / (1 - rate)), is
   /// below epsilon times its radiosity (plus 1e-3 of the largest, so that
-  /// dark elements do not rule), and the power still unshot (BiCGSTAB: the
-  /// residual's) is below epsilon of the power first shot (the emission and
-  /// the direct light's first scattering): the share of the light whose
-  /// absorption or escape the fields would still miss. Links are refined until the power a link
+  /// dark elements do not rule; BiCGSTAB: its residual, without a tail), and
+  /// the power still unshot (BiCGSTAB: the residual's) is below epsilon of
+  /// the power first shot (the emission and the direct light's first
+  /// scattering): the share of the light whose absorption or escape the
+  /// fields would still miss. Links are refined until the power a link
   /// may carry wrongly is below linkTolerance times the total power leaving
   /// all elements; by default linkTolerance = 3e-4 epsilon. A view of empty
   /// space (a link whose end holds no medium: only that voxel's G) is also
@@ -78,7 +79,9 @@ struct HierarchicalOptions
 
 struct HierarchicalReport
 {
-  std::vector<double> dQmaxHistory; ///< per sweep or Krylov step, relative to the largest radiosity
+  /// Per sweep or Krylov step, the largest change relative to each element's
+  /// radiosity (plus 1e-3 of the largest), as the stopping test reads it.
+  std::vector<double> dQmaxHistory;
   long long shots = 0;              ///< element shots (an element with unshot radiosity, per sweep)
   std::vector<long long> linksPerLevel;
   std::size_t peakBytes = 0; ///< the solver's largest structures at once (estimate)
