@@ -531,15 +531,13 @@ Solution solveHierarchical(const Scene& scene,
   struct Channel
   {
     Channel(int c, const DirectLighting& dl, ZonalSystem&& s, const Scene& scene, const NearField& near)
-      : ch(c)
-      , track(dl.track.begin(), dl.track.end())
+      : track(dl.track.begin(), dl.track.end())
       , trackFront(dl.trackFront.begin(), dl.trackFront.end())
       , entering(dl.entering)
       , sys(std::move(s))
       , op{ scene, near, c, Vector::Zero(sys.e.size()), nullptr }
     {
     }
-    int ch;
     /// The direct light's tracks, for the fields at the end: in float
     /// (their doubles were 0.4 GB at 256^3 in three channels, held
     /// through the whole solve).
@@ -743,7 +741,7 @@ Solution solveHierarchical(const Scene& scene,
 
       for (std::size_t k = 0; k < channels.size(); ++k) {
         const Channel& c = *channels[k];
-        const int ch = c.ch;
+        const int ch = c.op.ch;
         sol.stats.converged = sol.stats.converged && c.state.converged;
         sol.stats.iterations += c.state.iterations;
         sol.stats.finalUnshot = std::max(sol.stats.finalUnshot, maxAbs(c.state.dx));

@@ -3,6 +3,7 @@
 // same zonal model with every factor) on 12^3-16^3 scenes with walls,
 // surface-like voxels, RGB and a point light inside a scattering medium;
 // its error falls with epsilon; white furnace and energy balance.
+#include "BenchmarkScenes.h"
 #include "DenseReference.h"
 #include "TestScenes.h"
 #include "volrad/DenseSolver.h"
@@ -117,12 +118,7 @@ TEST(HierarchicalSolver, ErrorFallsAsLinksAreRefined)
 // closer as epsilon falls.
 TEST(HierarchicalSolver, EnergyBalancesToEpsilonInAThickHighAlbedoMedium)
 {
-  Scene s = cubeScene(24);
-  for (Index v = 0; v < s.grid.voxelCount(); ++v) {
-    s.sigmaI[v] = float(0.99 * 61.0);
-    s.kappaA[v] = float(0.01 * 61.0);
-  }
-  s.pointLights.push_back({ Vec3::Constant(0.5), uniformChannels(1.0) });
+  const Scene s = bench::cubeScene61(24);
   double previous = 1.0;
   for (const double epsilon : { 1e-2, 1e-3 }) {
     HierarchicalOptions o;
